@@ -1,0 +1,97 @@
+// A peridynamic flexible body (bond-based, 2D): its particles are point masses of the
+// multibody system, their coordinates a contiguous slice [x0 y0 x1 y1 ...] of q that
+// starts at coordinate_offset(). Bond forces enter g through ForceElement::add_forces.
+//
+// This header is the contract with the solver. Everything the solver needs is here;
+// the grid, neighbour search, bond storage and force kernel live in their own files.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/time_function.h"
+#include "mbs/force_element.h"
+#include "scene/scene_def.h"
+
+namespace periflex {
+
+// A particle coordinate whose motion is imposed (prescribed displacement or velocity BC).
+struct PrescribedCoordinate {
+  int coordinate = 0;      // global index into q
+  double reference = 0.0;  // reference position of that coordinate
+  TimeFunction displacement;  // q = reference + displacement(t)
+};
+
+// What one accepted step did to the bonds.
+struct FractureUpdate {
+  long bonds_broken = 0;          // in this update
+  double energy_released = 0.0;   // strain energy the broken bonds held
+};
+
+class PdBody : public ForceElement {
+ public:
+  // Builds particles, neighbour lists and bonds. Throws InputError (with def.where) on
+  // impossible input, e.g. a grid that would need more particles than allowed.
+  static std::unique_ptr<PdBody> build(const FlexBodyDef& def, int coordinate_offset);
+  ~PdBody() override;
+
+  const std::string& name() const override;
+  int particle_count() const;
+  int coordinate_offset() const;
+  // Interleaved reference positions (2 per particle), masses (1 per particle), volumes.
+  const std::vector<double>& reference_positions() const;
+  const std::vector<double>& masses() const;
+  const std::vector<double>& volumes() const;
+  // Initial velocity of each particle, interleaved.
+  std::vector<double> initial_velocities() const;
+  double grid_spacing() const;
+  double horizon() const;
+  long bond_count() const;        // intact + broken, each pair once
+  long broken_bond_count() const;
+
+  // Silling & Askari (2005) critical step of explicit integration, min over particles.
+  double critical_time_step() const;
+
+  // ForceElement: bond forces, bond damping, global damping and loads into g.
+  void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
+                  Eigen::VectorXd& g) override;
+  double potential_energy(const Eigen::VectorXd& q) const override;  // strain energy
+  double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+  double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const override;
+
+  // Breaks every bond whose stretch exceeds s0 at q (never in no-fail regions).
+  // Called once per accepted step, and only when fracture is on.
+  FractureUpdate update_fracture(const Eigen::VectorXd& q);
+  bool fracture_enabled() const;
+
+  // Damage in [0, 1] per particle.
+  void damage(std::vector<float>& out) const;
+  // Largest bond stretch per particle at q (for colouring).
+  void max_stretch(const Eigen::VectorXd& q, std::vector<float>& out) const;
+
+  // Live parameters (between steps).
+  void set_bond_damping(double value);
+  void set_global_damping(double value);
+  void set_fracture_enabled(bool enabled);
+  double bond_damping() const;
+  double global_damping() const;
+
+  // Particle index nearest to a reference point.
+  int nearest_particle(const Vec2& reference_point) const;
+  // Particles whose reference position lies in the shape.
+  std::vector<int> particles_in(const ShapeDef& region) const;
+  // Imposed displacement / velocity boundary conditions as prescribed coordinates.
+  std::vector<PrescribedCoordinate> prescribed_coordinates() const;
+
+  // Intact bond pairs (i < j) for drawing small bodies; empty above max_pairs.
+  void bond_pairs(std::vector<std::pair<int, int>>& out, size_t max_pairs) const;
+
+  struct Impl;
+
+ private:
+  explicit PdBody(std::unique_ptr<Impl> impl);
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace periflex

@@ -1,0 +1,105 @@
+// The one object the command line, the GUI and the off-screen recorder drive:
+// builds the model a scene declares, steps it, and reports samples and snapshots.
+//
+//   Simulation sim(scene);      // throws InputError on a scene that cannot be built
+//   sim.initialize();           // consistent initial conditions (throws NumericalError)
+//   while (sim.time() < end) sim.step();   // throws NumericalError with a diagnostic
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/scene_def.h"
+#include "solve/snapshot.h"
+
+namespace periflex {
+
+// What the model contains; printed by `periflex check`, written to summary.json.
+struct ModelInfo {
+  int bodies = 0;                 // rigid bodies, ground excluded (virtual ones included)
+  int virtual_bodies = 0;
+  int joints = 0, drivers = 0, force_elements = 0, probes = 0;
+  int flex_bodies = 0;
+  long particles = 0, bonds = 0;
+  int coordinates = 0;            // size of q
+  int constraint_equations = 0;   // rows of Phi
+  int redundant_equations = 0;    // rows dropped as dependent at t = 0
+  std::vector<std::string> redundant_constraints;  // names of the blocks they came from
+  int degrees_of_freedom = 0;     // coordinates - independent equations
+  std::vector<std::string> active_modules;  // e.g. "rigid_bodies", "constraint_solver", "pd_forces"
+  double critical_time_step = 0.0;          // explicit PD bound (0 when there are no particles)
+  double initial_position_correction = 0.0; // size of the projection at t = 0
+  double initial_velocity_correction = 0.0;
+  std::vector<std::string> warnings;        // foreseeable trouble (dt above critical, ...)
+};
+
+// One row of series.csv.
+struct Sample {
+  double time = 0.0;
+  Energies energies;
+  double violation_position = 0.0;  // max |Phi|
+  double violation_velocity = 0.0;  // max |Phi_q qd + Phi_t|
+  long broken_bonds = 0;
+  double mean_damage = 0.0, max_damage = 0.0;
+  std::vector<double> probe_values; // matches Simulation::probe_columns()
+};
+
+// Everything the GUI can change while running; applied between steps.
+struct LiveSettings {
+  std::string integrator;
+  double dt = 0.0;
+  CorrectionDef correction;
+  double bond_damping = 0.0;        // applied to every flexible body
+  double global_damping = 0.0;
+  bool fracture = true;
+};
+
+// A spring from a body point (or particle) to a point the mouse holds.
+struct MouseSpring {
+  int body = -1;                    // rigid body index (geometry order), or -1
+  int particle = -1;                // particle index (snapshot order), or -1
+  Vec2 local_point = Vec2::Zero();  // body-fixed grab point (rigid)
+  Vec2 target = Vec2::Zero();       // global
+  double stiffness = 0.0;           // 0: chosen from the mass grabbed
+};
+
+class Simulation {
+ public:
+  explicit Simulation(const SceneDef& scene);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  const SceneDef& scene() const;
+  const ModelInfo& info() const;
+
+  void initialize();
+  void step();
+  double time() const;
+  long step_count() const;
+  double end_time() const;
+
+  std::vector<std::string> probe_columns() const;  // "probe.<name>.x", ...
+  Sample sample() const;
+  void fill_snapshot(Snapshot& out) const;
+
+  LiveSettings settings() const;
+  void apply(const LiveSettings& settings);
+  void set_mouse_spring(const std::optional<MouseSpring>& spring);
+
+  // Wall-clock seconds spent in each part of stepping so far, for profiling reports.
+  struct Timing { double forces = 0, constraints = 0, integration = 0, fracture = 0; };
+  Timing timing() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// Names of the integrators the program offers, for help texts and validation.
+std::vector<std::string> integrator_names();
+
+}  // namespace periflex

@@ -1,0 +1,84 @@
+// A self-contained copy of what is drawn: the renderer, the GUI panels and the frame
+// writers read only this, never the solver's internals. Filled by Simulation::fill_snapshot
+// between steps; copying it is the only synchronisation the render thread needs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene_def.h"
+
+namespace periflex {
+
+// What does not change during a run: set once when the model is built.
+struct SceneGeometry {
+  std::string scene_name;
+  struct Body {
+    std::string name;
+    bool ground = false;
+    bool is_virtual = false;
+    std::vector<ShapeDef> shapes;  // body-fixed
+  };
+  std::vector<Body> bodies;        // index 0 is the ground
+  struct FlexBody {
+    std::string name;
+    int first_particle = 0;        // into the particle arrays of Snapshot
+    int particle_count = 0;
+    double grid_spacing = 0.0;     // disc diameter when drawn
+  };
+  std::vector<FlexBody> flex_bodies;
+  std::vector<uint8_t> particle_attached;  // 1 where a rigid-flexible joint holds the particle
+  std::vector<float> reference_x, reference_y;
+  Vec2 bounds_min = Vec2::Zero(), bounds_max = Vec2::Zero();  // of the initial configuration
+  bool has_particles() const { return !reference_x.empty(); }
+};
+
+struct Energies {
+  double kinetic = 0.0;
+  double potential_gravity = 0.0;
+  double potential_elastic = 0.0;  // springs + PD strain energy
+  double dissipated = 0.0;         // damping, accumulated
+  double fracture = 0.0;           // strain energy released by broken bonds, accumulated
+  double external_work = 0.0;      // applied loads and actuators, accumulated
+  double driver_work = 0.0;        // work of rheonomic constraints, accumulated
+  // kinetic + potential + dissipated + fracture - external_work - driver_work - (same at t = 0)
+  double balance = 0.0;
+};
+
+struct Snapshot {
+  std::shared_ptr<const SceneGeometry> geometry;
+  double time = 0.0;
+  long step = 0;
+
+  struct Pose { double x = 0.0, y = 0.0, angle = 0.0; };
+  std::vector<Pose> bodies;        // same order as geometry->bodies (ground first)
+
+  // Particles of all flexible bodies, concatenated in geometry order.
+  std::vector<float> px, py;
+  std::vector<float> damage;       // [0, 1]
+  std::vector<float> displacement; // |x - X|
+  std::vector<float> speed;        // |v|
+  std::vector<float> strain;       // largest bond stretch
+  std::vector<std::pair<int, int>> bond_pairs;  // intact bonds, only for small bodies
+
+  struct Marker {
+    enum class Kind { kRevolute, kTranslational, kRigid, kLink, kDriver, kAttachment };
+    Kind kind = Kind::kRevolute;
+    Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // one point, or two for links and sliders
+  };
+  std::vector<Marker> markers;
+  struct Spring { Vec2 a = Vec2::Zero(), b = Vec2::Zero(); };
+  std::vector<Spring> springs;
+  struct Probe { std::string name; Vec2 position = Vec2::Zero(); };
+  std::vector<Probe> probes;
+
+  Energies energies;
+  double violation_position = 0.0;
+  double violation_velocity = 0.0;
+  long broken_bonds = 0;
+  double max_damage = 0.0;
+};
+
+}  // namespace periflex

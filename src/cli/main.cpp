@@ -1,3 +1,127 @@
-// Entry point placeholder; replaced by the command-line front end.
+// periflex: flexible multibody dynamics with peridynamic fracture, in 2D.
+//
+//   periflex                       default scene: the GUI with a display, a recording without
+//   periflex run SCENE [...]       headless run: series.csv, summary.json, frames, movies
+//   periflex check SCENE           validate and describe a scene
+//   periflex gui [SCENE] [...]     interactive visualiser
+#include <CLI/CLI.hpp>
 #include <cstdio>
-int main() { std::puts("periflex " PERIFLEX_VERSION); return 0; }
+#include <cstdlib>
+#include <exception>
+
+#include "cli/check_command.h"
+#include "cli/gui_command.h"
+#include "cli/run_command.h"
+#include "cli/scene_setup.h"
+#include "core/error.h"
+
+namespace {
+
+using namespace periflex;
+
+bool display_available() {
+  const char* x = std::getenv("DISPLAY");
+  const char* wayland = std::getenv("WAYLAND_DISPLAY");
+  return (x && *x) || (wayland && *wayland);
+}
+
+void add_scene_options(CLI::App* command, std::vector<std::string>& overrides) {
+  command->add_option("--set", overrides, "Override a scene value, e.g. --set solver.dt=1e-4 (repeatable)")
+      ->type_name("KEY=VALUE");
+}
+
+// Off-screen rendering options shared by `run` and the default headless recording.
+void add_render_options(CLI::App* command, RunOptions& o) {
+  command->add_flag("--render", o.render, "Render frames off-screen (EGL) while running");
+  command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default end time / 100)")
+      ->check(CLI::PositiveNumber);
+  command->add_option("--size", o.size_text, "Frame size as WxH (default 1280x720)")->type_name("WxH");
+  command->add_option("--frames", o.frames_dir, "Directory for the PNG frames");
+  command->add_option("--movie", o.movie_path, "MP4 movie written through ffmpeg");
+  command->add_option("--fps", o.fps, "Playback frame rate of the movie")->check(CLI::Range(1.0, 240.0));
+  command->add_option("--snapshot-at", o.snapshot_at, "Simulated time of a single screenshot");
+  command->add_option("--screenshot", o.screenshot_path, "PNG file for --snapshot-at");
+  command->add_option("--colormap", o.colormap, "Colour map (turbo, viridis, grey)");
+  command->add_option("--field", o.field, "Particle colour: damage, displacement, speed, strain");
+}
+
+int run_main(int argc, char** argv) {
+  CLI::App app{"periflex: flexible multibody dynamics with peridynamic fracture, in 2D"};
+  app.set_version_flag("--version", std::string("periflex ") + PERIFLEX_VERSION);
+  app.require_subcommand(0, 1);
+
+  RunOptions run;
+  auto* run_cmd = app.add_subcommand("run", "Run a scene headless: series.csv, summary.json, frames, movies");
+  run_cmd->add_option("scene", run.scene_path, "Scene file (TOML)")->required();
+  add_scene_options(run_cmd, run.overrides);
+  run_cmd->add_option("--until", run.until, "End time (overrides solver.end_time)");
+  run_cmd->add_option("--dt", run.dt, "Time step (overrides solver.dt)");
+  run_cmd->add_option("--integrator", run.integrator, "Integrator (overrides solver.integrator)");
+  run_cmd->add_option("--out", run.out_dir, "Output directory (default out/<scene-name>)");
+  run_cmd->add_option("--threads", run.threads, "Threads for the force evaluation (default: all cores)")
+      ->check(CLI::Range(0, 1024));
+  run_cmd->add_flag("--quiet", run.quiet, "No progress bar; only the final line");
+  run_cmd->add_option("--vtk-every", run.vtk_every, "Write particle snapshots (VTK) every N steps")
+      ->check(CLI::NonNegativeNumber);
+  add_render_options(run_cmd, run);
+
+  std::string check_scene;
+  std::vector<std::string> check_overrides;
+  auto* check_cmd = app.add_subcommand("check", "Validate a scene and print what the model contains");
+  check_cmd->add_option("scene", check_scene, "Scene file (TOML)")->required();
+  add_scene_options(check_cmd, check_overrides);
+
+  GuiCommandOptions gui;
+  auto* gui_cmd = app.add_subcommand("gui", "Open the interactive visualiser");
+  gui_cmd->add_option("scene", gui.scene_path, "Scene file (default: the notched plate)");
+  add_scene_options(gui_cmd, gui.overrides);
+  gui_cmd->add_option("--frames", gui.frames, "Draw this many frames, then exit (for scripted runs)")
+      ->check(CLI::NonNegativeNumber);
+  gui_cmd->add_option("--screenshot", gui.screenshot, "Write the last frame to this PNG");
+  gui_cmd->add_option("--script", gui.script, "Timed actions, e.g. 'pause@5; step@6; resume@8'");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);
+    return kExitBadInput;
+  }
+
+  if (*run_cmd) return run_command(run);
+  if (*check_cmd) return check_command(check_scene, check_overrides);
+  if (*gui_cmd) {
+    if (gui.scene_path.empty()) gui.scene_path = default_scene_path();
+    return gui_command(gui);
+  }
+
+  // No subcommand: the default scene, in a window when there is a display, recorded otherwise.
+  if (display_available() && gui_available()) {
+    GuiCommandOptions defaults;
+    defaults.scene_path = default_scene_path();
+    return gui_command(defaults);
+  }
+  RunOptions record;
+  record.scene_path = default_scene_path();
+  record.render = render_available();
+  record.movie_in_out_dir = record.render && ffmpeg_available();
+  return run_command(record);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run_main(argc, argv);
+  } catch (const periflex::InputError& error) {
+    std::fprintf(stderr, "periflex: error: %s\n", error.what());
+    return periflex::kExitBadInput;
+  } catch (const periflex::NumericalError& error) {
+    std::fprintf(stderr, "periflex: numerical failure: %s\n", error.what());
+    return periflex::kExitNumerical;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "periflex: error: %s\n", error.what());
+    return periflex::kExitOther;
+  }
+}

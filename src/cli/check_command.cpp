@@ -1,0 +1,64 @@
+#include "cli/check_command.h"
+
+#include <cstdio>
+
+#include "cli/scene_setup.h"
+#include "core/error.h"
+#include "solve/simulation.h"
+
+namespace periflex {
+
+namespace {
+
+void print_list(const char* label, const std::vector<std::string>& items) {
+  std::printf("  %-22s", label);
+  if (items.empty()) std::printf("none");
+  for (size_t k = 0; k < items.size(); ++k) std::printf("%s%s", k ? ", " : "", items[k].c_str());
+  std::printf("\n");
+}
+
+}  // namespace
+
+int check_command(const std::string& scene_path, const std::vector<std::string>& overrides) {
+  const SceneDef scene = load_scene_with_options(scene_path, overrides);
+  Simulation sim(scene);
+
+  // Initial conditions are made consistent here, which also finds redundant constraints.
+  std::string init_failure;
+  try {
+    sim.initialize();
+  } catch (const NumericalError& error) {
+    init_failure = error.what();
+  }
+
+  const ModelInfo& m = sim.info();
+  const SolverDef& s = scene.solver;
+  std::printf("scene %s (%s)\n", scene.name.c_str(), scene.path.c_str());
+  if (!scene.description.empty()) std::printf("  %s\n", scene.description.c_str());
+  std::printf("  %-22s%d (%d virtual)\n", "rigid bodies", m.bodies, m.virtual_bodies);
+  std::printf("  %-22s%d\n", "joints", m.joints);
+  std::printf("  %-22s%d\n", "drivers", m.drivers);
+  std::printf("  %-22s%d\n", "force elements", m.force_elements);
+  std::printf("  %-22s%d\n", "probes", m.probes);
+  std::printf("  %-22s%d (%ld particles, %ld bonds)\n", "flexible bodies", m.flex_bodies, m.particles, m.bonds);
+  std::printf("  %-22s%d\n", "coordinates", m.coordinates);
+  std::printf("  %-22s%d (%d redundant)\n", "constraint equations", m.constraint_equations, m.redundant_equations);
+  print_list("redundant", m.redundant_constraints);
+  std::printf("  %-22s%d\n", "degrees of freedom", m.degrees_of_freedom);
+  print_list("active modules", m.active_modules);
+  std::printf("  %-22s%s, dt = %g s, end time = %g s\n", "integrator", s.integrator.c_str(), s.dt, s.end_time);
+  if (m.critical_time_step > 0) {
+    std::printf("  %-22s%g s (dt / dt_crit = %.3g)\n", "critical time step", m.critical_time_step,
+                s.dt / m.critical_time_step);
+  }
+  std::printf("  %-22s%.3g (positions), %.3g (velocities)\n", "initial correction", m.initial_position_correction,
+              m.initial_velocity_correction);
+  for (const auto& w : m.warnings) std::printf("warning: %s\n", w.c_str());
+  if (!init_failure.empty()) {
+    std::fprintf(stderr, "periflex: numerical failure at set-up: %s\n", init_failure.c_str());
+    return kExitNumerical;
+  }
+  return kExitOk;
+}
+
+}  // namespace periflex

@@ -1,0 +1,34 @@
+// Where rendered frames go during a headless run: the off-screen recorder when the program
+// is built with EGL, otherwise nothing (asking for frames then is bad input).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "cli/run_command.h"
+#include "solve/snapshot.h"
+
+namespace periflex {
+
+struct FrameStats {
+  long frames = 0;
+  double render_seconds = 0.0;  // drawing and read-back, in the recorder's thread
+  double encode_seconds = 0.0;  // PNG / ffmpeg, in the recorder's thread
+  std::string where;            // frames directory / movie / screenshot written
+};
+
+class FrameSink {
+ public:
+  virtual ~FrameSink() = default;
+  // Hands a snapshot over; returns once it is copied (the drawing happens in another thread).
+  virtual void submit(const Snapshot& snapshot) = 0;
+  // Waits for every frame to be written. Throws std::runtime_error on failure.
+  virtual FrameStats finish() = 0;
+};
+
+// Checks what can be checked before simulating (ffmpeg present, output writable, sizes valid);
+// throws InputError. Then creates the sink.
+std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std::string& out_dir,
+                                           std::shared_ptr<const SceneGeometry> geometry);
+
+}  // namespace periflex

@@ -1,0 +1,24 @@
+// `periflex gui`: hands over to the visualiser when the program was built with it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace periflex {
+
+struct GuiCommandOptions {
+  std::string scene_path;
+  std::vector<std::string> overrides;
+  int frames = 0;          // 0: interactive
+  std::string screenshot;  // PNG of the last frame
+  std::string script;      // timed actions for scripted runs
+};
+
+int gui_command(const GuiCommandOptions& options);
+
+// What this build of the program can do.
+bool gui_available();
+bool render_available();
+bool ffmpeg_available();
+
+}  // namespace periflex

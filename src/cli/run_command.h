@@ -1,0 +1,40 @@
+// `periflex run SCENE ...`: a headless run writing series.csv, summary.json and optional
+// VTK snapshots and rendered frames / movies.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace periflex {
+
+struct RunOptions {
+  std::string scene_path;
+  std::vector<std::string> overrides;   // --set key.path=value
+  std::optional<double> until;          // end time
+  std::optional<double> dt;
+  std::optional<std::string> integrator;
+  std::string out_dir;                  // default out/<scene-name>
+  int threads = 0;                      // 0: all cores
+  bool quiet = false;
+  long vtk_every = 0;                   // steps between VTK snapshots; 0: none
+
+  // Off-screen rendering.
+  bool render = false;
+  double frame_every = 0.0;             // simulated seconds between frames; 0: end_time / 100
+  std::string size_text;                // "WxH"; empty: 1280x720
+  int width = 1280, height = 720;       // parsed from size_text by run_command
+  std::string frames_dir;               // PNG sequence; default <out>/frames when rendering
+  std::string movie_path;               // MP4 through ffmpeg
+  bool movie_in_out_dir = false;        // movie.mp4 in the output directory (default recording)
+  double fps = 30.0;
+  std::optional<double> snapshot_at;    // one frame at this time ...
+  std::string screenshot_path;          // ... written here
+  std::string colormap;                 // empty: default
+  std::string field;                    // damage | displacement | speed | strain
+};
+
+// Returns the process exit code (0 ok, 2 bad input, 3 numerical failure, 1 other).
+int run_command(const RunOptions& options);
+
+}  // namespace periflex

@@ -1,0 +1,62 @@
+#include "output/series_writer.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace periflex {
+
+SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns,
+                           bool with_damage)
+    : path_(path), with_damage_(with_damage) {
+  columns_ = {"t",           "kinetic",     "potential_gravity", "potential_elastic", "dissipated",
+              "fracture",    "external_work", "driver_work",     "energy_balance",    "violation_position",
+              "violation_velocity"};
+  if (with_damage_) {
+    for (const char* c : {"broken_bonds", "mean_damage", "max_damage"}) columns_.push_back(c);
+  }
+  columns_.insert(columns_.end(), probe_columns.begin(), probe_columns.end());
+
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_) throw std::runtime_error("cannot write " + path);
+  std::string header;
+  for (size_t k = 0; k < columns_.size(); ++k) header += (k ? "," : "") + columns_[k];
+  header += '\n';
+  std::fputs(header.c_str(), file_);
+  std::fflush(file_);
+}
+
+SeriesWriter::~SeriesWriter() {
+  if (file_) std::fclose(file_);
+}
+
+bool SeriesWriter::write(const Sample& s) {
+  const Energies& e = s.energies;
+  std::vector<double> values = {s.time,       e.kinetic,     e.potential_gravity, e.potential_elastic,
+                                e.dissipated, e.fracture,    e.external_work,     e.driver_work,
+                                e.balance,    s.violation_position, s.violation_velocity};
+  if (with_damage_) {
+    values.push_back(static_cast<double>(s.broken_bonds));
+    values.push_back(s.mean_damage);
+    values.push_back(s.max_damage);
+  }
+  values.insert(values.end(), s.probe_values.begin(), s.probe_values.end());
+  for (double v : values) {
+    if (!std::isfinite(v)) return false;
+  }
+
+  // Format the whole row first, then hand it to the file in one write and flush.
+  line_.clear();
+  char buffer[32];
+  for (size_t k = 0; k < values.size(); ++k) {
+    std::snprintf(buffer, sizeof buffer, "%.12g", values[k]);
+    if (k) line_ += ',';
+    line_ += buffer;
+  }
+  line_ += '\n';
+  if (std::fwrite(line_.data(), 1, line_.size(), file_) != line_.size() || std::fflush(file_) != 0)
+    throw std::runtime_error("could not write to " + path_ + " (disk full?)");
+  ++rows_;
+  return true;
+}
+
+}  // namespace periflex

@@ -1,0 +1,35 @@
+// series.csv: one row per output sample (time, energies, constraint violation, damage, probes).
+// Each row reaches the file in one write, so a run killed half-way leaves complete rows.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "solve/simulation.h"
+
+namespace periflex {
+
+class SeriesWriter {
+ public:
+  // Opens `path` and writes the header. Damage columns only when the scene has particles.
+  SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns, bool with_damage);
+  ~SeriesWriter();
+  SeriesWriter(const SeriesWriter&) = delete;
+  SeriesWriter& operator=(const SeriesWriter&) = delete;
+
+  // Appends a row. Returns false (and writes nothing) if any value is not finite.
+  bool write(const Sample& sample);
+  long rows() const { return rows_; }
+  const std::vector<std::string>& columns() const { return columns_; }
+
+ private:
+  std::FILE* file_ = nullptr;
+  std::string path_;
+  std::vector<std::string> columns_;
+  bool with_damage_ = false;
+  long rows_ = 0;
+  std::string line_;
+};
+
+}  // namespace periflex

@@ -1,0 +1,58 @@
+#include "output/summary_writer.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "output/atomic_file.h"
+
+namespace periflex {
+
+// JSON has no NaN or infinity: write null instead so the file stays valid.
+static nlohmann::json finite_or_null(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+void write_summary(const std::string& path, const ModelInfo& info, const RunSummary& run) {
+  nlohmann::json j;
+  j["scene"] = run.scene;
+  j["scene_path"] = run.scene_path;
+  j["integrator"] = run.integrator;
+  j["dt"] = finite_or_null(run.dt);
+  j["steps"] = run.steps;
+  j["simulated_time"] = finite_or_null(run.simulated_time);
+  j["wall_time"] = finite_or_null(run.wall_time);
+  j["solver_time"] = finite_or_null(run.solver_time);
+  j["steps_per_second"] = run.wall_time > 0 ? finite_or_null(run.steps / run.wall_time) : nlohmann::json(nullptr);
+  j["rows_written"] = run.rows_written;
+  j["frames_written"] = run.frames_written;
+  j["render_time"] = finite_or_null(run.render_time);
+  j["status"] = run.status;
+  j["exit_code"] = run.exit_code;
+  j["message"] = run.message;
+
+  nlohmann::json model;
+  model["bodies"] = info.bodies;
+  model["virtual_bodies"] = info.virtual_bodies;
+  model["joints"] = info.joints;
+  model["drivers"] = info.drivers;
+  model["force_elements"] = info.force_elements;
+  model["probes"] = info.probes;
+  model["flex_bodies"] = info.flex_bodies;
+  model["particles"] = info.particles;
+  model["bonds"] = info.bonds;
+  model["coordinates"] = info.coordinates;
+  model["constraint_equations"] = info.constraint_equations;
+  model["redundant_equations"] = info.redundant_equations;
+  model["redundant_constraints"] = info.redundant_constraints;
+  model["degrees_of_freedom"] = info.degrees_of_freedom;
+  model["critical_time_step"] = finite_or_null(info.critical_time_step);
+  model["initial_position_correction"] = finite_or_null(info.initial_position_correction);
+  model["initial_velocity_correction"] = finite_or_null(info.initial_velocity_correction);
+  model["warnings"] = info.warnings;
+  j["model"] = model;
+  j["active_modules"] = info.active_modules;
+
+  write_file_atomically(path, j.dump(2) + "\n");
+}
+
+}  // namespace periflex

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/time_function.h"
+#include "pd/bond_store.h"
 #include "mbs/force_element.h"
 #include "scene/scene_def.h"
 
@@ -86,6 +87,20 @@ class PdBody : public ForceElement {
 
   // Intact bond pairs (i < j) for drawing small bodies; empty above max_pairs.
   void bond_pairs(std::vector<std::pair<int, int>>& out, size_t max_pairs) const;
+
+  // Foreseeable trouble found at set-up (e.g. a Poisson ratio bond-based PD cannot
+  // represent, a load region with no particles); the solver copies these into ModelInfo.
+  const std::vector<std::string>& warnings() const;
+  // Bond micromodulus c [N/m^6] (before influence and corrections) and critical stretch s0
+  // (infinite when neither fracture_energy nor critical_stretch was given).
+  double micromodulus() const;
+  double critical_stretch() const;
+  // The bond arrays (CSR, both directions), for tests, benchmarks and diagnostics.
+  const BondStore& bonds() const;
+  // Strain energy density [J/m^3] of each particle at q: (1/V_i) sum_j k |xi| s^2 / 4.
+  void strain_energy_density(const Eigen::VectorXd& q, std::vector<double>& out) const;
+  // Heap bytes held by particles and bonds.
+  size_t memory_bytes() const;
 
   struct Impl;
 

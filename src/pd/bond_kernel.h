@@ -1,0 +1,33 @@
+// The hot loops over the bonds of one body. Positions and velocities are interleaved
+// [x0 y0 x1 y1 ...] (the body's slice of q and qd); forces are added to an interleaved array.
+// Each particle sums its own row, so the result does not depend on the thread count.
+#pragma once
+
+#include <cstdint>
+
+#include "pd/bond_store.h"
+
+namespace periflex {
+
+// force_i += sum_j k s e_ij with s = |y_j - y_i| / |xi| - 1 (elastic bond forces).
+void add_bond_forces(const BondStore& bonds, const double* pos, double* force);
+
+// As add_bond_forces plus viscous bond damping: pair force k (s + eta_over_e * ds/dt).
+void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
+                            double* force);
+
+// Strain energy sum over pairs of k |xi| s^2 / 2.
+double bond_strain_energy(const BondStore& bonds, const double* pos);
+
+// Power the bond damping removes: sum over pairs of k eta_over_e |xi| (ds/dt)^2.
+double bond_damping_power(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e);
+
+// Breaks every intact bond with s > s0 unless an end is flagged in no_fail (may be null).
+// Returns the number of pairs broken; energy_released gets the strain energy they held.
+long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const uint8_t* no_fail,
+                           double& energy_released);
+
+// Largest stretch over the intact bonds of each particle (0 without intact bonds).
+void max_bond_stretch(const BondStore& bonds, const double* pos, float* out);
+
+}  // namespace periflex

@@ -1,0 +1,454 @@
+#include "pd/pd_body.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "pd/bond_kernel.h"
+#include "pd/neighbor_search.h"
+#include "pd/particle_grid.h"
+#include "pd/pd_material.h"
+
+namespace periflex {
+
+namespace {
+
+// Largest grid a body may request; above it set-up refuses before allocating anything.
+constexpr double kMaxParticles = 2e7;
+
+// A traction or body force: force on each listed particle = scale * (fx(t), fy(t)).
+struct AppliedLoad {
+  std::vector<int> particles;
+  double scale = 0.0;
+  std::optional<TimeFunction> fx, fy;
+};
+
+// True when segment [a, b] properly crosses segment [c, d] (touching does not count).
+bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
+  const double o1 = cross(b - a, c - a), o2 = cross(b - a, d - a);
+  const double o3 = cross(d - c, a - c), o4 = cross(d - c, b - c);
+  return o1 * o2 < 0.0 && o3 * o4 < 0.0;
+}
+
+SourceLocation with_key(SourceLocation where, const std::string& key) {
+  where.key = where.key.empty() ? key : where.key + "." + key;
+  return where;
+}
+
+}  // namespace
+
+struct PdBody::Impl {
+  FlexBodyDef def;
+  int offset = 0;
+  ParticleGrid grid;
+  std::vector<double> reference, mass, volume;
+  BondStore bonds;
+  std::vector<uint8_t> no_fail;          // 1: bonds at this particle never break
+  std::vector<double> initial_weight;    // sum of partial-volume factors of the initial bonds
+  double dx = 0.0, delta = 0.0, c = 0.0, s0 = 0.0;
+  bool fracture = false;
+  double bond_damping = 0.0, global_damping = 0.0;
+  long broken_pairs = 0;
+  std::vector<PrescribedCoordinate> prescribed;
+  std::vector<AppliedLoad> loads;
+  std::vector<std::string> warnings;
+
+  // Partial-volume factor of a neighbour at distance r: the fraction of its cell inside the
+  // horizon, approximated linearly over the band delta +- dx/2 (Madenci & Oterkus 2014).
+  double volume_fraction(double r) const {
+    if (!def.partial_volume_correction) return r <= delta * (1 + 1e-12) ? 1.0 : 0.0;
+    if (r <= delta - 0.5 * dx) return 1.0;
+    return std::max(0.0, (delta + 0.5 * dx - r) / dx);
+  }
+
+  const double* pos(const Eigen::VectorXd& q) const { return q.data() + offset; }
+  int n() const { return grid.size(); }
+};
+
+PdBody::PdBody(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+PdBody::~PdBody() = default;
+
+std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_offset) {
+  auto m = std::make_unique<Impl>();
+  m->def = def;
+  m->offset = coordinate_offset;
+  const PdMaterialDef& mat = def.material;
+
+  // reject what cannot be built, naming the key
+  auto require = [&](bool ok, const std::string& key, const std::string& message) {
+    if (!ok) throw InputError(with_key(def.where, key), "flex body '" + def.name + "': " + message);
+  };
+  require(def.shape.kind == ShapeDef::Kind::kBox || def.shape.kind == ShapeDef::Kind::kCircle ||
+              def.shape.kind == ShapeDef::Kind::kPolygon || def.shape.kind == ShapeDef::Kind::kBar,
+          "shape", "needs a box, circle or polygon shape");
+  require(def.grid_spacing > 0.0, "grid_spacing", "grid_spacing must be positive");
+  require(def.thickness > 0.0, "thickness", "thickness must be positive");
+  require(def.horizon_ratio >= 1.0, "horizon_ratio", "horizon_ratio must be at least 1");
+  require(mat.youngs_modulus > 0.0, "material.youngs_modulus", "youngs_modulus must be positive");
+  require(mat.density > 0.0, "material.density", "density must be positive");
+  require(mat.fracture_energy >= 0.0, "material.fracture_energy", "fracture_energy must not be negative");
+  require(mat.critical_stretch >= 0.0, "material.critical_stretch", "critical_stretch must not be negative");
+
+  // refuse huge grids before allocating anything
+  const double estimate = estimated_particle_count(def.shape, def.grid_spacing);
+  if (estimate > kMaxParticles) {
+    std::ostringstream msg;
+    msg << "flex body '" << def.name << "': grid_spacing " << def.grid_spacing << " needs about "
+        << static_cast<long long>(estimate) << " particles, more than the limit of "
+        << static_cast<long long>(kMaxParticles) << "; raise grid_spacing";
+    throw InputError(with_key(def.where, "grid_spacing"), msg.str());
+  }
+
+  // particles on the grid
+  m->dx = def.grid_spacing;
+  m->delta = def.horizon_ratio * def.grid_spacing;
+  m->grid = fill_grid(def.shape, def.holes, m->dx);
+  const int n = m->n();
+  require(n > 0, "shape", "the shape holds no particle at this grid_spacing");
+  const double v = m->dx * m->dx * def.thickness;
+  m->reference.resize(2 * n);
+  for (int i = 0; i < n; ++i) {
+    m->reference[2 * i] = m->grid.x[i];
+    m->reference[2 * i + 1] = m->grid.y[i];
+  }
+  m->volume.assign(n, v);
+  m->mass.assign(n, mat.density * v);
+
+  // material constants
+  m->c = periflex::micromodulus(mat.youngs_modulus, def.thickness, m->delta, mat.plane_strain);
+  m->fracture = def.fracture;
+  m->s0 = std::numeric_limits<double>::infinity();
+  if (mat.critical_stretch > 0.0) {
+    m->s0 = mat.critical_stretch;
+  } else if (mat.fracture_energy > 0.0) {
+    m->s0 = critical_stretch_from_energy(mat.fracture_energy, mat.youngs_modulus, m->delta, mat.plane_strain,
+                                         def.influence);
+  } else if (def.fracture) {
+    m->warnings.push_back("flex body '" + def.name +
+                          "': fracture is on but neither fracture_energy nor critical_stretch is given; "
+                          "bonds will not break");
+  }
+  if (mat.poisson_ratio >= 0.0) {
+    const double implied = implied_poisson_ratio(mat.plane_strain);
+    if (std::abs(mat.poisson_ratio - implied) > 1e-3) {
+      std::ostringstream msg;
+      msg << "flex body '" << def.name << "': bond-based peridynamics implies a Poisson ratio of "
+          << (mat.plane_strain ? "1/4 in plane strain" : "1/3 in plane stress") << "; the stated "
+          << mat.poisson_ratio << " is not represented";
+      m->warnings.push_back(msg.str());
+    }
+  }
+
+  // neighbours within the horizon (plus the half cell the partial-volume band reaches)
+  const double reach = def.partial_volume_correction ? m->delta + 0.5 * m->dx : m->delta;
+  const NeighborList nl = find_neighbors(m->grid.x, m->grid.y, reach * (1 + 1e-9));
+
+  // keep bonds with a positive weight that no notch cuts; reference lengths come from the
+  // integer grid offsets so both directions hold identical values
+  m->no_fail.assign(n, 0);
+  for (int i = 0; i < n; ++i) {
+    const Vec2 p(m->grid.x[i], m->grid.y[i]);
+    for (const ShapeDef& region : def.no_fail_regions) m->no_fail[i] |= region.contains(p) ? 1 : 0;
+  }
+  BondStore& bonds = m->bonds;
+  bonds.row.assign(n + 1, 0);
+  std::vector<double> k0;  // uncorrected stiffness
+  bonds.neighbor.reserve(nl.col.size());
+  bonds.inv_length.reserve(nl.col.size());
+  k0.reserve(nl.col.size());
+  m->initial_weight.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
+      const int32_t j = nl.col[b];
+      const double di = m->grid.ix[j] - m->grid.ix[i], dj = m->grid.iy[j] - m->grid.iy[i];
+      const double r = m->dx * std::sqrt(di * di + dj * dj);
+      const double beta = m->volume_fraction(r);
+      const double w = influence(def.influence, r, m->delta);
+      if (beta <= 0.0 || w <= 0.0) continue;
+      const Vec2 a(m->grid.x[i], m->grid.y[i]), bpos(m->grid.x[j], m->grid.y[j]);
+      bool cut = false;
+      for (const NotchDef& notch : def.notches) cut = cut || segments_cross(a, bpos, notch.p1, notch.p2);
+      if (cut) continue;
+      bonds.neighbor.push_back(j);
+      bonds.inv_length.push_back(1.0 / r);
+      k0.push_back(m->c * w * beta * v * v);
+      m->initial_weight[i] += beta;
+    }
+    bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
+  }
+  bonds.neighbor.shrink_to_fit();
+  bonds.inv_length.shrink_to_fit();
+  bonds.broken.assign(bonds.neighbor.size(), 0);
+
+  // surface correction (energy method, Madenci & Oterkus): g_i = continuum / discrete strain
+  // energy density under isotropic expansion; a bond takes the mean of its ends' factors
+  std::vector<double> g(n, 1.0);
+  if (def.surface_correction) {
+    const double w_cont = isotropic_energy_density(m->c, def.thickness, m->delta, 1.0);
+    for (int i = 0; i < n; ++i) {
+      double w_disc = 0.0;
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) w_disc += 0.25 * k0[b] / bonds.inv_length[b];
+      w_disc /= v;
+      if (w_disc > 0.0) g[i] = w_cont / w_disc;
+    }
+  }
+  bonds.stiffness.resize(k0.size());
+  for (int i = 0; i < n; ++i) {
+    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b)
+      bonds.stiffness[b] = k0[b] * 0.5 * (g[i] + g[bonds.neighbor[b]]);
+  }
+
+  // loads and boundary conditions
+  for (size_t li = 0; li < def.loads.size(); ++li) {
+    const RegionLoadDef& load = def.loads[li];
+    std::vector<int> inside;
+    for (int i = 0; i < n; ++i)
+      if (load.region.contains(Vec2(m->grid.x[i], m->grid.y[i]))) inside.push_back(i);
+    if (inside.empty()) {
+      m->warnings.push_back("flex body '" + def.name + "': load '" + load.name + "' selects no particle");
+      continue;
+    }
+    switch (load.kind) {
+      case RegionLoadDef::Kind::kPrescribedVelocity:
+      case RegionLoadDef::Kind::kPrescribedDisplacement: {
+        const bool velocity = load.kind == RegionLoadDef::Kind::kPrescribedVelocity;
+        for (int i : inside) {
+          for (int comp = 0; comp < 2; ++comp) {
+            const std::optional<TimeFunction>& f = comp == 0 ? load.fx : load.fy;
+            if (!f) continue;
+            PrescribedCoordinate pc;
+            pc.coordinate = coordinate_offset + 2 * i + comp;
+            pc.reference = m->reference[2 * i + comp];
+            pc.displacement = velocity ? f->antiderivative() : *f;
+            m->prescribed.push_back(pc);
+          }
+        }
+        break;
+      }
+      case RegionLoadDef::Kind::kTraction: {
+        // traction [Pa] on the boundary the region covers: total force = traction * length * t,
+        // length = particles * dx / rows, rows = particle layers across the region (the
+        // smaller of its distinct grid columns and rows)
+        std::set<int32_t> cols, rows;
+        for (int i : inside) {
+          cols.insert(m->grid.ix[i]);
+          rows.insert(m->grid.iy[i]);
+        }
+        const double layers = static_cast<double>(std::min(cols.size(), rows.size()));
+        m->loads.push_back({inside, def.thickness * m->dx / layers, load.fx, load.fy});
+        break;
+      }
+      case RegionLoadDef::Kind::kBodyForce:
+        m->loads.push_back({inside, v, load.fx, load.fy});
+        break;
+    }
+  }
+
+  m->bond_damping = def.bond_damping;
+  m->global_damping = def.global_damping;
+  return std::unique_ptr<PdBody>(new PdBody(std::move(m)));
+}
+
+const std::string& PdBody::name() const { return impl_->def.name; }
+int PdBody::particle_count() const { return impl_->n(); }
+int PdBody::coordinate_offset() const { return impl_->offset; }
+const std::vector<double>& PdBody::reference_positions() const { return impl_->reference; }
+const std::vector<double>& PdBody::masses() const { return impl_->mass; }
+const std::vector<double>& PdBody::volumes() const { return impl_->volume; }
+double PdBody::grid_spacing() const { return impl_->dx; }
+double PdBody::horizon() const { return impl_->delta; }
+long PdBody::bond_count() const { return static_cast<long>(impl_->bonds.directed_count() / 2); }
+long PdBody::broken_bond_count() const { return impl_->broken_pairs; }
+bool PdBody::fracture_enabled() const { return impl_->fracture; }
+void PdBody::set_bond_damping(double value) { impl_->bond_damping = value; }
+void PdBody::set_global_damping(double value) { impl_->global_damping = value; }
+void PdBody::set_fracture_enabled(bool enabled) { impl_->fracture = enabled; }
+double PdBody::bond_damping() const { return impl_->bond_damping; }
+double PdBody::global_damping() const { return impl_->global_damping; }
+const std::vector<std::string>& PdBody::warnings() const { return impl_->warnings; }
+double PdBody::micromodulus() const { return impl_->c; }
+double PdBody::critical_stretch() const { return impl_->s0; }
+const BondStore& PdBody::bonds() const { return impl_->bonds; }
+std::vector<PrescribedCoordinate> PdBody::prescribed_coordinates() const { return impl_->prescribed; }
+
+std::vector<double> PdBody::initial_velocities() const {
+  const Impl& m = *impl_;
+  std::vector<double> v(2 * m.n());
+  for (int i = 0; i < m.n(); ++i) {
+    v[2 * i] = m.def.velocity.x();
+    v[2 * i + 1] = m.def.velocity.y();
+  }
+  // imposed coordinates start with their imposed rate
+  for (const PrescribedCoordinate& pc : m.prescribed) v[pc.coordinate - m.offset] = pc.displacement.d1(0.0);
+  return v;
+}
+
+double PdBody::critical_time_step() const {
+  const Impl& m = *impl_;
+  const BondStore& b = m.bonds;
+  // Silling & Askari (2005): dt < sqrt(2 rho / sum_j C_ij V_j / |xi|) = sqrt(2 m_i / sum_b k_b / |xi_b|)
+  double dt = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < m.n(); ++i) {
+    double sum = 0.0;
+    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) sum += b.stiffness[k] * b.inv_length[k];
+    if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * m.mass[i] / sum));
+  }
+  return dt;
+}
+
+void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) {
+  const Impl& m = *impl_;
+  double* force = g.data() + m.offset;
+  const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
+
+  // bonds: the damped kernel only when bond damping is on (it needs velocities)
+  if (eta_over_e > 0.0)
+    add_damped_bond_forces(m.bonds, m.pos(q), qd.data() + m.offset, eta_over_e, force);
+  else
+    add_bond_forces(m.bonds, m.pos(q), force);
+
+  // mass-proportional damping -alpha m v
+  if (m.global_damping > 0.0) {
+    const double* vel = qd.data() + m.offset;
+    for (int i = 0; i < m.n(); ++i) {
+      force[2 * i] -= m.global_damping * m.mass[i] * vel[2 * i];
+      force[2 * i + 1] -= m.global_damping * m.mass[i] * vel[2 * i + 1];
+    }
+  }
+
+  // tractions and body forces
+  for (const AppliedLoad& load : m.loads) {
+    const double fx = load.fx ? load.scale * (*load.fx)(t) : 0.0;
+    const double fy = load.fy ? load.scale * (*load.fy)(t) : 0.0;
+    for (int i : load.particles) {
+      force[2 * i] += fx;
+      force[2 * i + 1] += fy;
+    }
+  }
+}
+
+double PdBody::potential_energy(const Eigen::VectorXd& q) const {
+  return bond_strain_energy(impl_->bonds, impl_->pos(q));
+}
+
+double PdBody::dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
+  const Impl& m = *impl_;
+  const double* vel = qd.data() + m.offset;
+  double power = 0.0;
+  const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
+  if (eta_over_e > 0.0) power += bond_damping_power(m.bonds, m.pos(q), vel, eta_over_e);
+  if (m.global_damping > 0.0) {
+    for (int i = 0; i < m.n(); ++i)
+      power += m.global_damping * m.mass[i] * (vel[2 * i] * vel[2 * i] + vel[2 * i + 1] * vel[2 * i + 1]);
+  }
+  return power;
+}
+
+double PdBody::external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const {
+  const Impl& m = *impl_;
+  const double* vel = qd.data() + m.offset;
+  double power = 0.0;
+  for (const AppliedLoad& load : m.loads) {
+    const double fx = load.fx ? load.scale * (*load.fx)(t) : 0.0;
+    const double fy = load.fy ? load.scale * (*load.fy)(t) : 0.0;
+    for (int i : load.particles) power += fx * vel[2 * i] + fy * vel[2 * i + 1];
+  }
+  return power;
+}
+
+FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
+  Impl& m = *impl_;
+  FractureUpdate update;
+  if (!m.fracture || !std::isfinite(m.s0)) return update;
+  const uint8_t* no_fail = m.def.no_fail_regions.empty() ? nullptr : m.no_fail.data();
+  update.bonds_broken = break_stretched_bonds(m.bonds, m.pos(q), m.s0, no_fail, update.energy_released);
+  m.broken_pairs += update.bonds_broken;
+  return update;
+}
+
+void PdBody::damage(std::vector<float>& out) const {
+  const Impl& m = *impl_;
+  const BondStore& b = m.bonds;
+  out.resize(m.n());
+  // 1 - intact weight / initial weight, the weight of a bond being its partial-volume factor
+  for (int i = 0; i < m.n(); ++i) {
+    double intact = 0.0;
+    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k)
+      if (!b.broken[k]) intact += m.volume_fraction(1.0 / b.inv_length[k]);
+    const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
+    out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
+  }
+}
+
+void PdBody::max_stretch(const Eigen::VectorXd& q, std::vector<float>& out) const {
+  out.resize(impl_->n());
+  max_bond_stretch(impl_->bonds, impl_->pos(q), out.data());
+}
+
+void PdBody::strain_energy_density(const Eigen::VectorXd& q, std::vector<double>& out) const {
+  const Impl& m = *impl_;
+  const BondStore& b = m.bonds;
+  const double* p = m.pos(q);
+  out.resize(m.n());
+  for (int i = 0; i < m.n(); ++i) {
+    double sum = 0.0;
+    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) {
+      const int32_t j = b.neighbor[k];
+      const double dx = p[2 * j] - p[2 * i], dy = p[2 * j + 1] - p[2 * i + 1];
+      const double s = std::sqrt(dx * dx + dy * dy) * b.inv_length[k] - 1.0;
+      sum += 0.25 * b.stiffness[k] * s * s / b.inv_length[k];
+    }
+    out[i] = sum / m.volume[i];
+  }
+}
+
+size_t PdBody::memory_bytes() const {
+  const Impl& m = *impl_;
+  const size_t per_particle_doubles = m.reference.capacity() + m.mass.capacity() + m.volume.capacity() +
+                                      m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity();
+  return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
+         (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + m.no_fail.capacity();
+}
+
+int PdBody::nearest_particle(const Vec2& point) const {
+  const Impl& m = *impl_;
+  int best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < m.n(); ++i) {
+    const double dx = m.grid.x[i] - point.x(), dy = m.grid.y[i] - point.y();
+    const double d2 = dx * dx + dy * dy;
+    if (d2 < best_d2) {
+      best_d2 = d2;
+      best = i;
+    }
+  }
+  return best;
+}
+
+std::vector<int> PdBody::particles_in(const ShapeDef& region) const {
+  const Impl& m = *impl_;
+  std::vector<int> out;
+  for (int i = 0; i < m.n(); ++i)
+    if (region.contains(Vec2(m.grid.x[i], m.grid.y[i]))) out.push_back(i);
+  return out;
+}
+
+void PdBody::bond_pairs(std::vector<std::pair<int, int>>& out, size_t max_pairs) const {
+  const BondStore& b = impl_->bonds;
+  out.clear();
+  for (int i = 0; i < b.particle_count(); ++i) {
+    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) {
+      if (b.broken[k] || b.neighbor[k] <= i) continue;
+      if (out.size() >= max_pairs) {
+        out.clear();
+        return;
+      }
+      out.emplace_back(i, b.neighbor[k]);
+    }
+  }
+}
+
+}  // namespace periflex

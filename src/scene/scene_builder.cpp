@@ -1,0 +1,559 @@
+#include "scene/scene_builder.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "scene/function_reader.h"
+#include "scene/scene_loader.h"
+#include "scene/shape_reader.h"
+
+namespace periflex {
+
+namespace {
+
+using Kind = ShapeDef::Kind;
+
+// Keys of every variant of a typed table, for "does not apply to" messages.
+const std::set<std::string> kJointKeys = {"name", "type", "body_i", "body_j", "point_i", "point_j", "axis_i",
+                                          "axis_j", "length", "offset", "relative_angle"};
+const std::set<std::string> kDriverKeys = {"name", "type", "body_i", "body_j", "point_i", "point_j", "axis", "function"};
+const std::set<std::string> kForceKeys = {"name", "type", "body_i", "body_j", "point_i", "point_j", "stiffness",
+                                          "damping", "free_length", "free_angle", "actuator", "direction", "magnitude"};
+const std::set<std::string> kLoadKeys = {"name", "type", "region", "fx", "fy"};
+
+std::string join(const std::vector<std::string>& words) {
+  std::string out;
+  for (size_t k = 0; k < words.size(); ++k) out += (k ? ", " : "") + words[k];
+  return out;
+}
+
+// Turns a TOML tree into a SceneDef, one section at a time.
+class SceneBuilder {
+ public:
+  SceneBuilder(const ReadContext& context, const toml::table& root)
+      : context_(context), root_(root), top_(context, root, "", "the scene file") {}
+
+  SceneDef build(const std::string& default_name) {
+    // the model sections first, so that references can be resolved as they are read
+    read_scene(default_name);
+    read_solver();
+    for (const auto& [table, index] : elements("body")) scene_.bodies.push_back(read_body(*table, index));
+    for (const auto& [table, index] : elements("flex_body")) scene_.flex_bodies.push_back(read_flex_body(*table, index));
+    for (const auto& [table, index] : elements("joint")) scene_.joints.push_back(read_joint(*table, index));
+    for (const auto& [table, index] : elements("driver")) scene_.drivers.push_back(read_driver(*table, index));
+    for (const auto& [table, index] : elements("force")) scene_.forces.push_back(read_force(*table, index));
+    for (const auto& [table, index] : elements("probe")) scene_.probes.push_back(read_probe(*table, index));
+    for (const auto& [table, index] : elements("attachment"))
+      scene_.attachments.push_back(read_attachment(*table, index));
+    top_.finish();
+
+    // a scene needs something that moves
+    if (scene_.bodies.empty() && scene_.flex_bodies.empty()) {
+      SourceLocation where = context_.locate(nullptr, "body");
+      where.line = 1;
+      throw InputError(where, "the scene declares no [[body]] and no [[flex_body]]; a scene needs at least one");
+    }
+    return scene_;
+  }
+
+ private:
+  // ---------------------------------------------------------------------------
+  // Element lists and names
+
+  // The tables of the array of tables `key` (e.g. every [[body]]), with their indices.
+  std::vector<std::pair<const toml::table*, size_t>> elements(const std::string& key) {
+    std::vector<std::pair<const toml::table*, size_t>> out;
+    const toml::node* node = top_.node(key);
+    if (node == nullptr) return out;
+    const auto* array = node->as_array();
+    if (array == nullptr)
+      context_.fail(node, key, "expected [[" + key + "]] (an array of tables), found " + describe_type(*node));
+    for (size_t k = 0; k < array->size(); ++k) {
+      const toml::node* element = array->get(k);
+      if (!element->is_table())
+        context_.fail(element, key, "expected [[" + key + "]] tables, found " + describe_type(*element));
+      out.emplace_back(element->as_table(), k);
+    }
+    return out;
+  }
+
+  // The required, well-formed, per-kind unique name of an element of [[kind]].
+  std::string element_name(const toml::table& table, const std::string& kind, size_t index,
+                           std::map<std::string, int>& seen) {
+    const std::string path = kind + "." + std::to_string(index);
+    const toml::node* node = table.get("name");
+    if (node == nullptr)
+      context_.fail(&table, path + ".name", "missing required key 'name' in [[" + kind + "]] number " +
+                    std::to_string(index + 1));
+    const auto* text = node->as_string();
+    if (text == nullptr) context_.fail(node, path + ".name", "expected a string, found " + describe_type(*node));
+    const std::string name = text->get();
+    // names appear in override paths and output columns: no dots, no spaces
+    const bool plain = !name.empty() && std::none_of(name.begin(), name.end(), [](char c) {
+      return c == '.' || c == '=' || c == '"' || c == ',' || static_cast<unsigned char>(c) <= ' ';
+    });
+    if (!plain)
+      context_.fail(node, path + ".name", "name '" + name + "' must be non-empty without dots, '=', quotes, commas or spaces");
+    const auto first = seen.find(name);
+    if (first != seen.end())
+      context_.fail(node, kind + "." + name + ".name",
+                    "duplicate name '" + name + "' (already declared at line " + std::to_string(first->second) + ")");
+    seen.emplace(name, static_cast<int>(node->source().begin.line));
+    return name;
+  }
+
+  // A rigid body (or the ground, when allowed) named by `key`.
+  std::string rigid_reference(TableReader& in, const std::string& key, bool allow_ground) {
+    const std::string name = in.required_string(key);
+    if (name == "ground") {
+      if (!allow_ground) in.fail(key, "'ground' cannot be used here: it does not move; name a rigid body");
+      return name;
+    }
+    if (rigid_names_.count(name) != 0) return name;
+    if (flex_names_.count(name) != 0)
+      in.fail(key, "'" + name + "' is a flexible body; " + key + " must name a rigid body" +
+              " (couple a flexible body through an [[attachment]] to a virtual body)");
+    in.fail(key, "body '" + name + "' is not declared (rigid bodies: " + rigid_list(allow_ground) + ")");
+  }
+
+  std::string rigid_list(bool with_ground) const {
+    std::vector<std::string> names;
+    if (with_ground) names.emplace_back("ground");
+    for (const BodyDef& body : scene_.bodies) names.push_back(body.name);
+    return join(names);
+  }
+
+  // Two-body elements may not connect a body to itself.
+  static void check_distinct(TableReader& in, const std::string& a, const std::string& b, const std::string& what) {
+    if (a == b) in.fail("body_j", what + " connects '" + a + "' to itself; body_i and body_j must differ");
+  }
+
+  // ---------------------------------------------------------------------------
+  // [scene] and [solver]
+
+  void read_scene(const std::string& default_name) {
+    const toml::table* table = top_.optional_table("scene");
+    scene_.name = default_name;
+    if (table == nullptr) return;
+    TableReader in(context_, *table, "scene", "[scene]");
+    scene_.name = in.string("name", default_name);
+    scene_.description = in.string("description", "");
+    scene_.gravity = in.vec2("gravity", Vec2(0.0, -9.81));
+    in.finish();
+  }
+
+  void read_solver() {
+    const toml::table* table = top_.optional_table("solver");
+    if (table == nullptr) return;
+    TableReader in(context_, *table, "solver", "[solver]");
+    SolverDef& solver = scene_.solver;
+    solver.integrator = in.choice("integrator", scene_integrator_names(), solver.integrator);
+    solver.dt = in.number("dt", solver.dt, Sign::kPositive, true);
+    solver.end_time = in.number("end_time", solver.end_time, Sign::kPositive, true);
+    if (solver.dt > solver.end_time)
+      in.fail(in.has("dt") ? "dt" : "end_time", "dt = " + format_number(solver.dt) + " exceeds end_time = " +
+              format_number(solver.end_time) + "; the run would not take a single step");
+    solver.rtol = in.number("rtol", solver.rtol, Sign::kPositive);
+    solver.atol = in.number("atol", solver.atol, Sign::kPositive);
+    solver.output_interval = in.number("output_interval", solver.output_interval, Sign::kNonNegative, true);
+    solver.auto_substep = in.boolean("auto_substep", solver.auto_substep);
+    solver.dt_safety = in.number("dt_safety", solver.dt_safety, Sign::kPositive);
+    if (solver.dt_safety > 1.0)
+      in.fail("dt_safety", "must be in (0, 1] (a fraction of the critical step), found " + format_number(solver.dt_safety));
+    solver.threads = static_cast<int>(in.integer("threads", solver.threads, 0));
+    if (const toml::table* correction = in.optional_table("correction")) read_correction(*correction);
+    in.finish();
+  }
+
+  void read_correction(const toml::table& table) {
+    TableReader in(context_, table, "solver.correction", "[solver.correction]");
+    CorrectionDef& c = scene_.solver.correction;
+    const std::string method = in.choice("method", {"none", "baumgarte", "projection"}, "baumgarte");
+    c.method = method == "none" ? CorrectionDef::Method::kNone
+               : method == "projection" ? CorrectionDef::Method::kProjection : CorrectionDef::Method::kBaumgarte;
+    c.alpha = in.number("alpha", c.alpha, Sign::kNonNegative);
+    c.beta = in.number("beta", c.beta, Sign::kNonNegative);
+    c.tolerance = in.number("tolerance", c.tolerance, Sign::kPositive);
+    c.max_iterations = static_cast<int>(in.integer("max_iterations", c.max_iterations, 1));
+    in.finish();
+  }
+
+  // ---------------------------------------------------------------------------
+  // [[body]]
+
+  BodyDef read_body(const toml::table& table, size_t index) {
+    BodyDef body;
+    body.name = element_name(table, "body", index, body_names_);
+    TableReader in(context_, table, "body." + body.name, "[[body]] '" + body.name + "'");
+    in.node("name");
+    if (body.name == "ground")
+      in.fail("name", "'ground' is implicit and may not be declared; give ground points in global coordinates");
+    rigid_names_.insert(body.name);
+    body.where = in.where();
+    body.is_virtual = in.boolean("virtual", false);
+
+    // only a virtual body may be massless
+    body.mass = in.number("mass", body.mass);
+    body.inertia = in.number("inertia", body.inertia);
+    for (const char* key : {"mass", "inertia"}) {
+      const double value = std::string(key) == "mass" ? body.mass : body.inertia;
+      if (value < 0.0) in.fail(key, std::string(key) + " must not be negative, found " + format_number(value));
+      if (value == 0.0 && !body.is_virtual)
+        in.fail(key, std::string(key) + " must be positive (only a virtual body may be massless), found 0");
+    }
+
+    body.position = in.vec2("position", Vec2::Zero());
+    body.angle = in.number("angle", 0.0);
+    body.velocity = in.vec2("velocity", Vec2::Zero());
+    body.angular_velocity = in.number("angular_velocity", 0.0);
+
+    // drawing: one shape or a list of them
+    const toml::node* shape = in.node("shape");
+    const toml::node* shapes = in.node("shapes");
+    if (shape != nullptr && shapes != nullptr) in.fail("shapes", "give either shape or shapes, not both");
+    if (shape != nullptr) body.shapes.push_back(read_shape(context_, *shape, in.key_path("shape")));
+    if (shapes != nullptr) body.shapes = read_shape_list(context_, *shapes, in.key_path("shapes"));
+    in.finish();
+    return body;
+  }
+
+  // ---------------------------------------------------------------------------
+  // [[joint]]
+
+  JointDef read_joint(const toml::table& table, size_t index) {
+    JointDef joint;
+    joint.name = element_name(table, "joint", index, joint_names_);
+    TableReader in(context_, table, "joint." + joint.name, "[[joint]] '" + joint.name + "'");
+    in.node("name");
+    joint.where = in.where();
+    const std::string type = in.required_choice(
+        "type", {"revolute", "translational", "rigid", "revolute_revolute", "revolute_translational"});
+    joint.body_i = rigid_reference(in, "body_i", true);
+    joint.body_j = rigid_reference(in, "body_j", true);
+    check_distinct(in, joint.body_i, joint.body_j, "joint '" + joint.name + "'");
+    joint.point_i = in.vec2("point_i", Vec2::Zero());
+    joint.point_j = in.vec2("point_j", Vec2::Zero());
+
+    // type-specific keys
+    if (type == "revolute") {
+      joint.kind = JointDef::Kind::kRevolute;
+    } else if (type == "translational") {
+      joint.kind = JointDef::Kind::kTranslational;
+      joint.axis_i = in.axis("axis_i", Vec2::UnitX());
+      joint.axis_j = in.axis("axis_j", Vec2::UnitX());
+    } else if (type == "rigid") {
+      joint.kind = JointDef::Kind::kRigid;
+      if (const auto angle = in.optional_number("relative_angle")) {
+        joint.relative_angle = *angle;
+        joint.relative_angle_from_initial = false;
+      }
+    } else if (type == "revolute_revolute") {
+      joint.kind = JointDef::Kind::kRevoluteRevolute;
+      joint.length = -1.0;
+      if (const auto length = in.optional_number("length", Sign::kPositive, true)) {
+        joint.length = *length;
+        joint.length_from_initial = false;
+      }
+    } else {
+      joint.kind = JointDef::Kind::kRevoluteTranslational;
+      joint.axis_i = in.axis("axis_i", Vec2::UnitX());
+      joint.axis_j = in.axis("axis_j", Vec2::UnitX());
+      joint.offset = in.number("offset", 0.0, Sign::kAny, true);
+    }
+    in.finish(kJointKeys, "a " + type + " joint");
+    return joint;
+  }
+
+  // ---------------------------------------------------------------------------
+  // [[driver]]
+
+  DriverDef read_driver(const toml::table& table, size_t index) {
+    DriverDef driver;
+    driver.name = element_name(table, "driver", index, driver_names_);
+    TableReader in(context_, table, "driver." + driver.name, "[[driver]] '" + driver.name + "'");
+    in.node("name");
+    driver.where = in.where();
+    const std::string type =
+        in.required_choice("type", {"absolute_angle", "relative_angle", "absolute_position", "relative_position"});
+    const bool relative = type.rfind("relative", 0) == 0;
+    const bool position = type.find("position") != std::string::npos;
+    driver.kind = type == "absolute_angle"      ? DriverDef::Kind::kAbsoluteAngle
+                  : type == "relative_angle"    ? DriverDef::Kind::kRelativeAngle
+                  : type == "absolute_position" ? DriverDef::Kind::kAbsolutePosition
+                                                : DriverDef::Kind::kRelativePosition;
+
+    // an absolute driver moves one body; a relative one measures j against i
+    driver.body_i = rigid_reference(in, "body_i", relative);
+    if (relative) {
+      driver.body_j = rigid_reference(in, "body_j", true);
+      check_distinct(in, driver.body_i, driver.body_j, "driver '" + driver.name + "'");
+    }
+    if (position) {
+      driver.point_i = in.vec2("point_i", Vec2::Zero());
+      if (relative) driver.point_j = in.vec2("point_j", Vec2::Zero());
+      driver.axis = in.axis("axis", Vec2::UnitX());
+    }
+    const toml::node* function = in.node("function");
+    if (function == nullptr) in.fail_missing("function");
+    driver.function = read_time_function(context_, *function, in.key_path("function"));
+    in.finish(kDriverKeys, "a " + type + " driver");
+    return driver;
+  }
+
+  // ---------------------------------------------------------------------------
+  // [[force]]
+
+  ForceDef read_force(const toml::table& table, size_t index) {
+    ForceDef force;
+    force.name = element_name(table, "force", index, force_names_);
+    TableReader in(context_, table, "force." + force.name, "[[force]] '" + force.name + "'");
+    in.node("name");
+    force.where = in.where();
+    const std::string type = in.required_choice("type", {"spring_damper", "rotational_spring", "force", "torque"});
+    const bool two_bodies = type == "spring_damper" || type == "rotational_spring";
+
+    // spring elements join two bodies (either may be the ground); loads act on one body
+    force.body_i = rigid_reference(in, "body_i", two_bodies);
+    if (two_bodies) {
+      force.body_j = rigid_reference(in, "body_j", true);
+      check_distinct(in, force.body_i, force.body_j, "force '" + force.name + "'");
+      force.stiffness = in.number("stiffness", 0.0, Sign::kNonNegative);
+      force.damping = in.number("damping", 0.0, Sign::kNonNegative);
+    }
+    auto function_or = [&](const char* key, const TimeFunction& fallback) {
+      const toml::node* node = in.node(key);
+      return node != nullptr ? read_time_function(context_, *node, in.key_path(key)) : fallback;
+    };
+
+    if (type == "spring_damper") {
+      force.kind = ForceDef::Kind::kSpringDamper;
+      force.point_i = in.vec2("point_i", Vec2::Zero());
+      force.point_j = in.vec2("point_j", Vec2::Zero());
+      force.free_length = in.number("free_length", -1.0, Sign::kNonNegative, true);
+      force.actuator = function_or("actuator", TimeFunction::constant(0.0));
+    } else if (type == "rotational_spring") {
+      force.kind = ForceDef::Kind::kRotationalSpring;
+      if (const auto angle = in.optional_number("free_angle")) {
+        force.free_angle = *angle;
+        force.free_angle_from_initial = false;
+      }
+    } else {
+      force.kind = type == "force" ? ForceDef::Kind::kForce : ForceDef::Kind::kTorque;
+      if (type == "force") {
+        force.point_i = in.vec2("point_i", Vec2::Zero());
+        force.direction = in.axis("direction", Vec2::UnitX());
+      }
+      if (!in.has("magnitude")) {
+        in.node("magnitude");
+        in.fail_missing("magnitude");
+      }
+      force.magnitude = function_or("magnitude", TimeFunction::constant(0.0));
+    }
+    in.finish(kForceKeys, "a " + type + " force");
+    return force;
+  }
+
+  // ---------------------------------------------------------------------------
+  // [[probe]]
+
+  ProbeDef read_probe(const toml::table& table, size_t index) {
+    ProbeDef probe;
+    probe.name = element_name(table, "probe", index, probe_names_);
+    TableReader in(context_, table, "probe." + probe.name, "[[probe]] '" + probe.name + "'");
+    in.node("name");
+    probe.where = in.where();
+    // a rigid body point or the particle of a flexible body nearest a reference point
+    probe.body = in.required_string("body");
+    if (rigid_names_.count(probe.body) == 0 && flex_names_.count(probe.body) == 0)
+      in.fail("body", "body '" + probe.body + "' is not declared (bodies: " + all_body_list() + ")");
+    probe.point = in.vec2("point", Vec2::Zero());
+    in.finish();
+    return probe;
+  }
+
+  std::string all_body_list() const {
+    std::vector<std::string> names;
+    for (const BodyDef& body : scene_.bodies) names.push_back(body.name);
+    for (const FlexBodyDef& body : scene_.flex_bodies) names.push_back(body.name);
+    return join(names);
+  }
+
+  // ---------------------------------------------------------------------------
+  // [[flex_body]]
+
+  FlexBodyDef read_flex_body(const toml::table& table, size_t index) {
+    FlexBodyDef flex;
+    flex.name = element_name(table, "flex_body", index, body_names_);
+    TableReader in(context_, table, "flex_body." + flex.name, "[[flex_body]] '" + flex.name + "'");
+    in.node("name");
+    if (flex.name == "ground") in.fail("name", "'ground' is the name of the implicit ground; choose another");
+    flex_names_.insert(flex.name);
+    flex.where = in.where();
+
+    // geometry: an area filled with particles, minus holes
+    const toml::node* shape = in.node("shape");
+    if (shape == nullptr) in.fail_missing("shape");
+    flex.shape = read_shape(context_, *shape, in.key_path("shape"), {Kind::kBox, Kind::kCircle, Kind::kPolygon});
+    if (const toml::node* holes = in.node("holes")) flex.holes = read_shape_list(context_, *holes, in.key_path("holes"));
+
+    // grid and horizon
+    flex.grid_spacing = in.required_number("grid_spacing", Sign::kPositive, true);
+    flex.thickness = in.number("thickness", flex.thickness, Sign::kPositive, true);
+    flex.horizon_ratio = in.number("horizon_ratio", flex.horizon_ratio, Sign::kPositive);
+    if (flex.horizon_ratio < 1.0)
+      in.fail("horizon_ratio", "must be at least 1 (a horizon smaller than the grid spacing has no bonds), found " +
+              format_number(flex.horizon_ratio));
+    // refuse absurd grids before anything is allocated
+    const double particles = shape_area(flex.shape) / (flex.grid_spacing * flex.grid_spacing);
+    if (!(particles <= kMaxParticlesPerFlexBody)) {
+      const double smallest = std::sqrt(shape_area(flex.shape) / kMaxParticlesPerFlexBody);
+      in.fail("grid_spacing", "flexible body '" + flex.name + "' would have about " + format_number(std::round(particles)) +
+              " particles (area / grid_spacing^2), more than the limit of " + format_number(kMaxParticlesPerFlexBody) +
+              "; use grid_spacing >= " + format_number(smallest));
+    }
+
+    // model options
+    const std::string influence = in.choice("influence", {"constant", "conical"}, "constant");
+    flex.influence = influence == "conical" ? FlexBodyDef::Influence::kConical : FlexBodyDef::Influence::kConstant;
+    flex.partial_volume_correction = in.boolean("partial_volume_correction", flex.partial_volume_correction);
+    flex.surface_correction = in.boolean("surface_correction", flex.surface_correction);
+    flex.fracture = in.boolean("fracture", flex.fracture);
+    flex.bond_damping = in.number("bond_damping", 0.0, Sign::kNonNegative);
+    flex.global_damping = in.number("global_damping", 0.0, Sign::kNonNegative);
+    flex.velocity = in.vec2("velocity", Vec2::Zero());
+
+    // pre-cracks and unbreakable regions
+    if (const toml::array* notches = in.optional_array("notches"))
+      for (size_t k = 0; k < notches->size(); ++k) flex.notches.push_back(read_notch(*notches->get(k), in.key_path("notches") + "." + std::to_string(k)));
+    if (const toml::node* no_fail = in.node("no_fail"))
+      flex.no_fail_regions = read_shape_list(context_, *no_fail, in.key_path("no_fail"));
+
+    // material
+    const toml::table* material = in.optional_table("material");
+    if (material == nullptr) in.fail_missing("material", "a [flex_body.material] table");
+    flex.material = read_material(*material, in.key_path("material"), flex.fracture);
+
+    // loads and boundary conditions
+    const toml::node* loads = in.node("load");
+    if (loads != nullptr) {
+      const auto* array = loads->as_array();
+      if (array == nullptr)
+        context_.fail(loads, in.key_path("load"), "expected [[flex_body.load]] tables, found " + describe_type(*loads));
+      std::map<std::string, int> load_names;
+      for (size_t k = 0; k < array->size(); ++k) {
+        const toml::node* element = array->get(k);
+        if (!element->is_table())
+          context_.fail(element, in.key_path("load"), "expected [[flex_body.load]] tables, found " + describe_type(*element));
+        flex.loads.push_back(read_load(*element->as_table(), k, flex.name, load_names));
+      }
+    }
+    in.finish();
+    return flex;
+  }
+
+  NotchDef read_notch(const toml::node& node, const std::string& key) {
+    const auto* table = node.as_table();
+    if (table == nullptr) context_.fail(&node, key, "expected a notch { p1 = [x, y], p2 = [x, y] }, found " + describe_type(node));
+    TableReader in(context_, *table, key, "notch '" + key + "'");
+    NotchDef notch;
+    notch.p1 = in.required_vec2("p1");
+    notch.p2 = in.required_vec2("p2");
+    if (!((notch.p2 - notch.p1).norm() > 0.0)) in.fail("p2", "a notch needs p1 and p2 to differ");
+    in.finish();
+    return notch;
+  }
+
+  PdMaterialDef read_material(const toml::table& table, const std::string& path, bool fracture) {
+    TableReader in(context_, table, path, "[flex_body.material]");
+    PdMaterialDef m;
+    m.youngs_modulus = in.required_number("youngs_modulus", Sign::kPositive);
+    m.density = in.required_number("density", Sign::kPositive);
+    // one fracture criterion: energy or stretch
+    const auto energy = in.optional_number("fracture_energy", Sign::kPositive);
+    const auto stretch = in.optional_number("critical_stretch", Sign::kPositive);
+    if (energy && stretch) in.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
+    if (fracture && !energy && !stretch)
+      in.fail_missing("fracture_energy", "or critical_stretch; or set fracture = false in the flexible body");
+    m.fracture_energy = energy.value_or(0.0);
+    m.critical_stretch = stretch.value_or(0.0);
+    m.plane_strain = in.choice("plane", {"stress", "strain"}, "stress") == "strain";
+    // bond-based peridynamics fixes Poisson's ratio: 1/3 in plane stress, 1/4 in plane strain
+    if (const auto nu = in.optional_number("poisson_ratio")) {
+      const double fixed = m.plane_strain ? 0.25 : 1.0 / 3.0;
+      if (std::abs(*nu - fixed) > 0.05)
+        in.fail("poisson_ratio", "bond-based peridynamics fixes Poisson's ratio at " + format_number(fixed) + " in plane " +
+                (m.plane_strain ? "strain" : "stress") + "; " + format_number(*nu) +
+                " cannot be represented (remove poisson_ratio or change plane)");
+      m.poisson_ratio = *nu;
+    }
+    in.finish();
+    return m;
+  }
+
+  RegionLoadDef read_load(const toml::table& table, size_t index, const std::string& flex_name,
+                          std::map<std::string, int>& names) {
+    RegionLoadDef load;
+    const std::string kind = "flex_body." + flex_name + ".load";
+    load.name = element_name(table, kind, index, names);
+    TableReader in(context_, table, kind + "." + load.name, "[[flex_body.load]] '" + load.name + "'");
+    in.node("name");
+    load.where = in.where();
+    const std::string type =
+        in.required_choice("type", {"prescribed_velocity", "prescribed_displacement", "traction", "body_force"});
+    load.kind = type == "prescribed_velocity"       ? RegionLoadDef::Kind::kPrescribedVelocity
+                : type == "prescribed_displacement" ? RegionLoadDef::Kind::kPrescribedDisplacement
+                : type == "traction"                ? RegionLoadDef::Kind::kTraction
+                                                    : RegionLoadDef::Kind::kBodyForce;
+    const toml::node* region = in.node("region");
+    if (region == nullptr) in.fail_missing("region");
+    load.region = read_shape(context_, *region, in.key_path("region"));
+    if (const toml::node* fx = in.node("fx")) load.fx = read_time_function(context_, *fx, in.key_path("fx"));
+    if (const toml::node* fy = in.node("fy")) load.fy = read_time_function(context_, *fy, in.key_path("fy"));
+    // a load with neither component does nothing
+    if (!load.fx && !load.fy) in.fail_missing("fx", "or fy; a load needs at least one component");
+    in.finish();
+    return load;
+  }
+
+  // ---------------------------------------------------------------------------
+  // [[attachment]]
+
+  AttachmentDef read_attachment(const toml::table& table, size_t index) {
+    AttachmentDef attachment;
+    attachment.name = element_name(table, "attachment", index, attachment_names_);
+    TableReader in(context_, table, "attachment." + attachment.name, "[[attachment]] '" + attachment.name + "'");
+    in.node("name");
+    attachment.where = in.where();
+    attachment.body = rigid_reference(in, "body", false);
+    attachment.flex_body = in.required_string("flex_body");
+    if (flex_names_.count(attachment.flex_body) == 0) {
+      std::vector<std::string> names;
+      for (const FlexBodyDef& flex : scene_.flex_bodies) names.push_back(flex.name);
+      in.fail("flex_body", "flexible body '" + attachment.flex_body + "' is not declared (flexible bodies: " +
+              (names.empty() ? std::string("none") : join(names)) + ")");
+    }
+    const toml::node* region = in.node("region");
+    if (region == nullptr) in.fail_missing("region");
+    attachment.region = read_shape(context_, *region, in.key_path("region"));
+    in.finish();
+    return attachment;
+  }
+
+  const ReadContext& context_;
+  const toml::table& root_;
+  TableReader top_;
+  SceneDef scene_;
+  std::set<std::string> rigid_names_, flex_names_;
+  std::map<std::string, int> body_names_, joint_names_, driver_names_, force_names_, probe_names_, attachment_names_;
+};
+
+}  // namespace
+
+SceneDef build_scene(const toml::table& root, const ReadContext& context, const std::string& default_name) {
+  SceneBuilder builder(context, root);
+  return builder.build(default_name);
+}
+
+}  // namespace periflex

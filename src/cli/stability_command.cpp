@@ -1,0 +1,67 @@
+#include "cli/stability_command.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "core/error.h"
+#include "stability/child_process.h"
+#include "stability/stability_suite.h"
+
+namespace periflex {
+
+CLI::App* add_stability_subcommand(CLI::App& app, StabilityOptions& o) {
+  auto* command = app.add_subcommand(
+      "stability", "Run the numerical stability suite: stiff, extreme and long cases; writes a table");
+  command->add_flag("--quick", o.quick, "Only the fast cases (a few minutes; the ones ctest runs)");
+  command->add_option("--out", o.out_dir, "Output directory (default out/stability)");
+  command->add_option("--case", o.cases, "Run only cases whose name contains this text (repeatable)");
+  command->add_flag("--list", o.list, "List the cases and exit");
+  command->add_option("--threads", o.threads, "OpenMP threads of each case (default 1)")->check(CLI::Range(1, 1024));
+  return command;
+}
+
+int stability_command(const StabilityOptions& options) {
+  // the cases to run
+  std::vector<StabilityCase> cases;
+  for (const auto& c : stability_cases()) {
+    if (options.quick && !c.quick) continue;
+    bool wanted = options.cases.empty();
+    for (const auto& text : options.cases) wanted |= c.name.find(text) != std::string::npos;
+    if (wanted) cases.push_back(c);
+  }
+  if (options.list) {
+    for (const auto& c : cases) {
+      std::printf("%-40s %-15s %-18s %s%s\n", c.name.c_str(), c.group.c_str(), expectation_name(c.expect),
+                  c.description.c_str(), c.quick ? " [quick]" : "");
+    }
+    return kExitOk;
+  }
+  if (cases.empty()) throw InputError({"command line", 0, 0, "--case"}, "no stability case matches");
+
+  SuiteOptions suite;
+  suite.program = current_executable();
+  suite.out_dir = options.out_dir;
+  suite.threads = options.threads;
+
+  // one line per case as it finishes, then the table
+  std::vector<CaseResult> results;
+  int failures = 0;
+  for (size_t k = 0; k < cases.size(); ++k) {
+    std::printf("[%2zu/%zu] %-40s ", k + 1, cases.size(), cases[k].name.c_str());
+    std::fflush(stdout);
+    CaseResult r = run_stability_case(cases[k], suite);
+    std::printf("%-9s %6.2f s  %s%s\n", r.outcome.c_str(), r.run_seconds, r.as_expected ? "ok" : "NOT AS EXPECTED",
+                r.verdict.empty() ? "" : (": " + r.verdict).c_str());
+    std::fflush(stdout);
+    failures += r.as_expected ? 0 : 1;
+    results.push_back(std::move(r));
+  }
+  const std::string title = options.quick ? "Stability suite (quick)" : "Stability suite (full)";
+  write_stability_table(results, options.out_dir, title);
+  std::printf("\n%s\n", stability_table_markdown(results).c_str());
+  std::printf("%zu cases, %d not as expected; table in %s/stability.md and stability.csv\n", results.size(), failures,
+              options.out_dir.c_str());
+  return failures == 0 ? kExitOk : kExitOther;
+}
+
+}  // namespace periflex

@@ -1,0 +1,153 @@
+#include "stability/child_process.h"
+
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+
+extern char** environ;
+
+namespace periflex {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Output beyond this is dropped from the middle: the start says what ran, the end how it ended.
+constexpr size_t kMaxOutputBytes = 1 << 20;
+
+void append_bounded(std::string& out, const char* data, size_t n) {
+  out.append(data, n);
+  if (out.size() > 2 * kMaxOutputBytes) {
+    const std::string tail = out.substr(out.size() - kMaxOutputBytes / 2);
+    out.resize(kMaxOutputBytes / 2);
+    out += "\n[... output shortened ...]\n" + tail;
+  }
+}
+
+}  // namespace
+
+std::string current_executable() {
+  std::error_code ec;
+  const auto path = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : path.string();
+}
+
+ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& limits) {
+  ChildResult result;
+  if (argv.empty()) {
+    result.output = "no program given";
+    return result;
+  }
+
+  // everything the child needs is prepared before fork: between fork and exec only
+  // async-signal-safe calls are allowed (the parent may have other threads)
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  std::vector<std::string> env_storage;
+  for (char** e = environ; e && *e; ++e) {
+    bool replaced = false;
+    for (const auto& extra : limits.environment) {
+      const auto eq = extra.find('=');
+      if (eq != std::string::npos && std::strncmp(*e, extra.c_str(), eq + 1) == 0) replaced = true;
+    }
+    if (!replaced) env_storage.emplace_back(*e);
+  }
+  for (const auto& extra : limits.environment) env_storage.push_back(extra);
+  std::vector<char*> envp;
+  for (auto& e : env_storage) envp.push_back(e.data());
+  envp.push_back(nullptr);
+  struct rlimit memory_limit {};
+  const bool limit_memory = limits.memory_bytes > 0;
+  if (limit_memory) {
+    memory_limit.rlim_cur = static_cast<rlim_t>(limits.memory_bytes);
+    memory_limit.rlim_max = static_cast<rlim_t>(limits.memory_bytes);
+  }
+
+  int pipe_fds[2];
+  if (pipe2(pipe_fds, O_CLOEXEC) != 0) {
+    result.output = std::string("pipe failed: ") + std::strerror(errno);
+    return result;
+  }
+
+  const auto start = Clock::now();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    close(pipe_fds[0]);
+    close(pipe_fds[1]);
+    result.output = std::string("fork failed: ") + std::strerror(errno);
+    return result;
+  }
+  if (pid == 0) {
+    // child: own process group (so a timeout kills its threads and children too),
+    // output into the pipe, bounded memory, then the program
+    setpgid(0, 0);
+    dup2(pipe_fds[1], STDOUT_FILENO);
+    dup2(pipe_fds[1], STDERR_FILENO);
+    if (limit_memory) setrlimit(RLIMIT_AS, &memory_limit);
+    execve(args[0], args.data(), envp.data());
+    const char message[] = "exec failed\n";
+    ssize_t ignored = write(STDERR_FILENO, message, sizeof message - 1);
+    (void)ignored;
+    _exit(127);
+  }
+  result.started = true;
+  close(pipe_fds[1]);
+
+  // read until the pipe closes or the deadline passes
+  const auto deadline = start + std::chrono::duration<double>(limits.timeout_seconds);
+  char buffer[65536];
+  bool open = true;
+  while (open) {
+    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (left <= 0) {
+      result.timed_out = true;
+      break;
+    }
+    struct pollfd p {pipe_fds[0], POLLIN, 0};
+    const int ready = poll(&p, 1, static_cast<int>(std::min(left * 1000.0 + 1.0, 1000.0)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready <= 0) continue;
+    const ssize_t n = read(pipe_fds[0], buffer, sizeof buffer);
+    if (n > 0) {
+      append_bounded(result.output, buffer, static_cast<size_t>(n));
+    } else if (n == 0 || errno != EINTR) {
+      open = false;
+    }
+  }
+  if (result.timed_out) kill(-pid, SIGKILL);
+
+  // reap it; a child that closed its output but keeps running is still bound by the deadline
+  int status = 0;
+  while (true) {
+    const pid_t done = waitpid(pid, &status, result.timed_out ? 0 : WNOHANG);
+    if (done == pid) break;
+    if (done < 0 && errno != EINTR) break;
+    if (Clock::now() >= deadline && !result.timed_out) {
+      result.timed_out = true;
+      kill(-pid, SIGKILL);
+      continue;
+    }
+    if (!result.timed_out) usleep(2000);
+  }
+  close(pipe_fds[0]);
+  result.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  if (WIFEXITED(status)) {
+    result.exit_code = WEXITSTATUS(status);
+    if (result.exit_code == 127 && result.output.find("exec failed") != std::string::npos) result.started = false;
+  } else if (WIFSIGNALED(status)) {
+    result.signal = WTERMSIG(status);
+  }
+  return result;
+}
+
+}  // namespace periflex

@@ -1,0 +1,95 @@
+// Every quick case of the stability suite, run through the periflex program: each must end as its
+// catalogue entry says (stable within its bounds, stopped with exit 3 and a diagnostic naming the
+// expected quantity and a remedy, refused, or warned), with series.csv and summary.json intact.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <regex>
+
+#include "stability/child_process.h"
+#include "stability/stability_suite.h"
+
+namespace periflex {
+namespace {
+
+SuiteOptions test_options() {
+  SuiteOptions o;
+  o.program = PERIFLEX_BINARY;
+  o.out_dir = (std::filesystem::current_path() / "stability_test_out").string();
+  o.threads = 1;
+  return o;
+}
+
+std::vector<StabilityCase> quick_cases() {
+  std::vector<StabilityCase> quick;
+  for (const auto& c : stability_cases())
+    if (c.quick) quick.push_back(c);
+  return quick;
+}
+
+class QuickCase : public ::testing::TestWithParam<StabilityCase> {};
+
+TEST_P(QuickCase, BehavesAsExpected) {
+  const StabilityCase& c = GetParam();
+  const CaseResult r = run_stability_case(c, test_options());
+  if (r.outcome == "skipped") GTEST_SKIP() << r.verdict;
+  EXPECT_TRUE(r.as_expected) << c.name << ": expected " << r.expected << ", got " << r.outcome << " (exit "
+                             << r.exit_code << ", signal " << r.signal << ")\n  " << r.verdict << "\n  message: "
+                             << r.message << "\n  energy error " << r.relative_energy_error << " (bound "
+                             << c.max_relative_energy_error << "), max violation " << r.max_violation << " (bound "
+                             << c.max_violation << ")\n  output: " << test_options().out_dir << "/" << c.name;
+  // whatever the outcome, never a crash and never a hang
+  EXPECT_NE(r.outcome, "crashed") << r.message;
+  EXPECT_NE(r.outcome, "hung") << r.message;
+  EXPECT_TRUE(r.output_problems.empty()) << r.output_problems.front();
+}
+
+std::string case_test_name(const ::testing::TestParamInfo<StabilityCase>& info) {
+  std::string name = info.param.name;
+  for (char& ch : name)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Stability, QuickCase, ::testing::ValuesIn(quick_cases()), case_test_name);
+
+// 0.1 m x 0.04 m at dx = 1e-8 m: area / dx^2 = 4e13 particles. The refusal must give that count.
+TEST(AbsurdSize, RefusalStatesTheParticleCount) {
+  ChildLimits limits;
+  limits.timeout_seconds = 30;
+  limits.memory_bytes = 2e9;  // an attempt to allocate 4e13 particles fails here instead of swapping
+  const auto r = run_child({PERIFLEX_BINARY, "check", std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/notched_plate.toml",
+                            "--set", "flex_body.plate.grid_spacing=1e-8"},
+                           limits);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  bool count_found = false;
+  const std::regex number(R"([0-9]+(\.[0-9]+)?([eE][+]?[0-9]+)?)");
+  for (auto it = std::sregex_iterator(r.output.begin(), r.output.end(), number); it != std::sregex_iterator(); ++it) {
+    const double v = std::strtod(it->str().c_str(), nullptr);
+    // the estimate may count the grid's rows and columns (4000 x 10000 cells, +/- a row): within 1 %
+    if (std::abs(v - 4e13) < 0.01 * 4e13) count_found = true;
+  }
+  EXPECT_TRUE(count_found) << "no particle count near 4e13 in: " << r.output;
+  EXPECT_LT(r.wall_seconds, 10.0) << "refusing must not build anything";
+}
+
+// The subcommand, once the program registers it: a one-case run writes both tables.
+TEST(StabilityCommand, WritesMarkdownAndCsvTables) {
+  ChildLimits limits;
+  limits.timeout_seconds = 60;
+  const auto help = run_child({PERIFLEX_BINARY, "stability", "--list"}, limits);
+  if (help.exit_code != 0) GTEST_SKIP() << "this build's periflex has no 'stability' subcommand yet";
+  EXPECT_NE(help.output.find("spring_verlet_at_limit"), std::string::npos);
+  const std::string out = (std::filesystem::current_path() / "stability_command_out").string();
+  std::filesystem::remove_all(out);
+  const auto r = run_child(
+      {PERIFLEX_BINARY, "stability", "--quick", "--case", "spring_verlet_10x_limit", "--out", out}, limits);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(out + "/stability.md"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/stability.csv"));
+  EXPECT_NE(r.output.find("| spring_verlet_10x_limit |"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace periflex

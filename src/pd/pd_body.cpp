@@ -56,12 +56,32 @@ struct PdBody::Impl {
   std::vector<AppliedLoad> loads;
   std::vector<std::string> warnings;
 
-  // Partial-volume factor of a neighbour at distance r: the fraction of its cell inside the
-  // horizon, approximated linearly over the band delta +- dx/2 (Madenci & Oterkus 2014).
-  double volume_fraction(double r) const {
-    if (!def.partial_volume_correction) return r <= delta * (1 + 1e-12) ? 1.0 : 0.0;
-    if (r <= delta - 0.5 * dx) return 1.0;
-    return std::max(0.0, (delta + 0.5 * dx - r) / dx);
+  // Partial-volume factor of the neighbour at grid offset (a, b): without the correction 1
+  // inside the horizon; with it the exact fraction of its cell inside the horizon disc
+  // (cells whose centre lies beyond delta + dx/2 hold under 1% and are left out).
+  int table_size = 0;
+  std::vector<double> beta_table;  // by (|a|, |b|)
+  void build_beta_table() {
+    const double ratio = def.horizon_ratio;
+    table_size = static_cast<int>(std::ceil(ratio + 0.5)) + 1;
+    beta_table.assign(table_size * table_size, 0.0);
+    for (int a = 0; a < table_size; ++a) {
+      for (int b = 0; b < table_size; ++b) {
+        const double r2 = double(a) * a + double(b) * b;
+        if (!def.partial_volume_correction)
+          beta_table[a * table_size + b] = r2 <= ratio * ratio * (1 + 1e-12) ? 1.0 : 0.0;
+        else if (r2 < (ratio + 0.5) * (ratio + 0.5) * (1 - 1e-12))
+          beta_table[a * table_size + b] = cell_fraction_in_disc(a, b, ratio);
+      }
+    }
+  }
+  double volume_fraction(int a, int b) const {
+    a = std::abs(a);
+    b = std::abs(b);
+    return a < table_size && b < table_size ? beta_table[a * table_size + b] : 0.0;
+  }
+  double bond_volume_fraction(int i, int32_t j) const {
+    return volume_fraction(grid.ix[j] - grid.ix[i], grid.iy[j] - grid.iy[i]);
   }
 
   const double* pos(const Eigen::VectorXd& q) const { return q.data() + offset; }
@@ -143,6 +163,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   }
 
   // neighbours within the horizon (plus the half cell the partial-volume band reaches)
+  m->build_beta_table();
   const double reach = def.partial_volume_correction ? m->delta + 0.5 * m->dx : m->delta;
   const NeighborList nl = find_neighbors(m->grid.x, m->grid.y, reach * (1 + 1e-9));
 
@@ -160,21 +181,25 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   bonds.inv_length.reserve(nl.col.size());
   k0.reserve(nl.col.size());
   m->initial_weight.assign(n, 0.0);
+  std::vector<double> nx2;  // squared x-component of each bond's unit vector (for the correction)
+  nx2.reserve(nl.col.size());
   for (int i = 0; i < n; ++i) {
     for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
       const int32_t j = nl.col[b];
-      const double di = m->grid.ix[j] - m->grid.ix[i], dj = m->grid.iy[j] - m->grid.iy[i];
-      const double r = m->dx * std::sqrt(di * di + dj * dj);
-      const double beta = m->volume_fraction(r);
+      const int a = m->grid.ix[j] - m->grid.ix[i], bb = m->grid.iy[j] - m->grid.iy[i];
+      const double r2 = double(a) * a + double(bb) * bb;
+      const double r = m->dx * std::sqrt(r2);
+      const double beta = m->volume_fraction(a, bb);
       const double w = influence(def.influence, r, m->delta);
       if (beta <= 0.0 || w <= 0.0) continue;
-      const Vec2 a(m->grid.x[i], m->grid.y[i]), bpos(m->grid.x[j], m->grid.y[j]);
+      const Vec2 pi(m->grid.x[i], m->grid.y[i]), pj(m->grid.x[j], m->grid.y[j]);
       bool cut = false;
-      for (const NotchDef& notch : def.notches) cut = cut || segments_cross(a, bpos, notch.p1, notch.p2);
+      for (const NotchDef& notch : def.notches) cut = cut || segments_cross(pi, pj, notch.p1, notch.p2);
       if (cut) continue;
       bonds.neighbor.push_back(j);
       bonds.inv_length.push_back(1.0 / r);
       k0.push_back(m->c * w * beta * v * v);
+      nx2.push_back(double(a) * a / r2);
       m->initial_weight[i] += beta;
     }
     bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
@@ -183,22 +208,33 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   bonds.inv_length.shrink_to_fit();
   bonds.broken.assign(bonds.neighbor.size(), 0);
 
-  // surface correction (energy method, Madenci & Oterkus): g_i = continuum / discrete strain
-  // energy density under isotropic expansion; a bond takes the mean of its ends' factors
-  std::vector<double> g(n, 1.0);
+  // surface correction, energy method of Madenci & Oterkus (2014): under uniaxial strain along
+  // x (then y) each particle's factor is continuum / discrete energy density; a bond takes the
+  // mean of its ends' factors per axis, combined along its direction n as
+  // G = ((n_x / G_x)^2 + (n_y / G_y)^2)^(-1/2)
+  std::vector<double> gx(n, 1.0), gy(n, 1.0);
   if (def.surface_correction) {
-    const double w_cont = isotropic_energy_density(m->c, def.thickness, m->delta, 1.0);
+    const double w_cont = uniaxial_strain_energy_density(m->c, def.thickness, m->delta, 1.0);
     for (int i = 0; i < n; ++i) {
-      double w_disc = 0.0;
-      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) w_disc += 0.25 * k0[b] / bonds.inv_length[b];
-      w_disc /= v;
-      if (w_disc > 0.0) g[i] = w_cont / w_disc;
+      double wx = 0.0, wy = 0.0;
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+        // linearised stretch under H = diag(1, 0) is n_x^2, under diag(0, 1) it is n_y^2
+        const double cx = nx2[b], cy = 1.0 - cx;
+        wx += 0.25 * k0[b] / bonds.inv_length[b] * cx * cx;
+        wy += 0.25 * k0[b] / bonds.inv_length[b] * cy * cy;
+      }
+      if (wx > 0.0) gx[i] = w_cont * v / wx;
+      if (wy > 0.0) gy[i] = w_cont * v / wy;
     }
   }
   bonds.stiffness.resize(k0.size());
   for (int i = 0; i < n; ++i) {
-    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b)
-      bonds.stiffness[b] = k0[b] * 0.5 * (g[i] + g[bonds.neighbor[b]]);
+    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+      const int32_t j = bonds.neighbor[b];
+      const double mean_x = 0.5 * (gx[i] + gx[j]), mean_y = 0.5 * (gy[i] + gy[j]);
+      const double cx = nx2[b], cy = 1.0 - cx;
+      bonds.stiffness[b] = k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y));
+    }
   }
 
   // loads and boundary conditions
@@ -377,7 +413,7 @@ void PdBody::damage(std::vector<float>& out) const {
   for (int i = 0; i < m.n(); ++i) {
     double intact = 0.0;
     for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k)
-      if (!b.broken[k]) intact += m.volume_fraction(1.0 / b.inv_length[k]);
+      if (!b.broken[k]) intact += m.bond_volume_fraction(i, b.neighbor[k]);
     const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
     out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
   }

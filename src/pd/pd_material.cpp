@@ -1,5 +1,6 @@
 #include "pd/pd_material.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace periflex {
@@ -25,6 +26,24 @@ double critical_stretch_from_energy(double g0, double e, double delta, bool plan
 
 double isotropic_energy_density(double c, double t, double delta, double eps) {
   return kPi * c * t * delta * delta * delta * eps * eps / 6.0;
+}
+
+double uniaxial_strain_energy_density(double c, double t, double delta, double eps) {
+  return kPi * c * t * delta * delta * delta * eps * eps / 16.0;
+}
+
+double cell_fraction_in_disc(int a, int b, double m) {
+  // midpoint rule across the cell in x; in y the chord of the disc is cut exactly
+  constexpr int kSamples = 512;
+  double area = 0.0;
+  for (int k = 0; k < kSamples; ++k) {
+    const double x = a - 0.5 + (k + 0.5) / kSamples;
+    if (std::abs(x) >= m) continue;
+    const double half_chord = std::sqrt(m * m - x * x);
+    const double lo = std::max(b - 0.5, -half_chord), hi = std::min(b + 0.5, half_chord);
+    if (hi > lo) area += (hi - lo) / kSamples;
+  }
+  return area;
 }
 
 double implied_poisson_ratio(bool plane_strain) { return plane_strain ? 0.25 : 1.0 / 3.0; }

@@ -27,6 +27,14 @@ double critical_stretch_from_energy(double fracture_energy, double youngs_modulu
 // (= E eps^2 / (1 - nu) with nu = 1/3 in plane stress; 2 (lambda + mu) eps^2 with nu = 1/4 in strain).
 double isotropic_energy_density(double c, double thickness, double horizon, double eps);
 
+// Strain energy density of the continuum under uniaxial strain H = diag(eps, 0):
+// pi c t delta^3 eps^2 / 16 (= E eps^2 / (2 (1 - nu^2)) with nu = 1/3 in plane stress).
+double uniaxial_strain_energy_density(double c, double thickness, double horizon, double eps);
+
+// Fraction of the square cell of side 1 centred at (a, b) that lies inside the disc of radius
+// m about the origin (grid units): the exact partial volume of a neighbour cut by the horizon.
+double cell_fraction_in_disc(int a, int b, double m);
+
 // The Poisson ratio bond-based PD implies: 1/3 plane stress, 1/4 plane strain.
 double implied_poisson_ratio(bool plane_strain);
 

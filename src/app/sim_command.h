@@ -1,0 +1,54 @@
+// Requests from the user interface (panels, keys, mouse, scripts) to the simulation thread.
+// They travel through a CommandQueue and are applied between two steps, in order.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "solve/simulation.h"
+
+namespace periflex {
+
+struct SimCommand {
+  enum class Kind {
+    kRun,            // start or continue stepping
+    kPause,          // stop stepping after the current step
+    kToggleRun,      // run when paused, pause when running
+    kStep,           // pause, then take `count` steps
+    kReset,          // rebuild the current scene from memory, keeping the live settings
+    kReload,         // re-read the scene file from disk (keeps the old model if it fails)
+    kLoadScene,      // switch to the scene file in `text`
+    kApplySettings,  // replace the live settings with `settings`
+    kSetParameter,   // set one live setting by name: `text` = key, `value` = value
+    kSetSpeed,       // real-time factor `number`; <= 0 runs as fast as possible
+    kMouseSpring,    // set (or, when `spring` is empty, release) the mouse spring
+    kRecord,         // publish recording snapshots every `number` simulated seconds; 0 stops
+    kQuit,           // end the simulation thread
+  };
+  Kind kind = Kind::kPause;
+  int count = 1;
+  std::string text;
+  std::string value;
+  double number = 0.0;
+  LiveSettings settings;
+  std::optional<MouseSpring> spring;
+  std::string origin = "ui";  // who asked, for the log: "ui", "key", "mouse", "script"
+
+  static SimCommand make(Kind kind, std::string origin = "ui") {
+    SimCommand c;
+    c.kind = kind;
+    c.origin = std::move(origin);
+    return c;
+  }
+};
+
+// Sets one live setting from text, as scripts and `set key=value` write it.
+// Keys: dt, integrator, bond_damping, global_damping, fracture (on/off), correction
+// (none/baumgarte/projection), alpha, beta, tolerance, max_iterations.
+// Returns an empty string on success, else what is wrong (settings unchanged).
+std::string set_live_parameter(LiveSettings& settings, const std::string& key, const std::string& value);
+
+// The live setting keys set_live_parameter accepts, for help texts.
+const char* live_parameter_keys();
+
+}  // namespace periflex

@@ -1,0 +1,357 @@
+#include "app/sim_worker.h"
+
+#include <cstdio>
+#include <exception>
+
+#include "core/error.h"
+
+namespace periflex {
+
+namespace {
+
+// how often a running simulation hands a snapshot to the render thread (wall seconds)
+constexpr double kPublishInterval = 1.0 / 120.0;
+// window over which steps/s and simulated s per wall s are measured
+constexpr double kRateWindow = 0.5;
+// a run more than this many wall seconds behind its pace drops the debt instead of bursting
+constexpr double kMaxLag = 0.25;
+
+std::string describe_speed(double speed) {
+  if (speed <= 0.0) return "as fast as possible";
+  char text[48];
+  std::snprintf(text, sizeof text, "%gx real time", speed);
+  return text;
+}
+
+std::string describe_settings(const LiveSettings& s) {
+  static const char* methods[] = {"none", "baumgarte", "projection"};
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "integrator=%s dt=%g correction=%s alpha=%g beta=%g tolerance=%g bond_damping=%g "
+                "global_damping=%g fracture=%s",
+                s.integrator.c_str(), s.dt, methods[static_cast<int>(s.correction.method)],
+                s.correction.alpha, s.correction.beta, s.correction.tolerance, s.bond_damping,
+                s.global_damping, s.fracture ? "on" : "off");
+  return text;
+}
+
+}  // namespace
+
+SimWorker::SimWorker(ModelFactory factory, const std::string& scene_path,
+                     std::vector<std::string> overrides, EventLog& log)
+    : factory_(std::move(factory)), log_(log), scene_path_(scene_path), overrides_(std::move(overrides)) {
+  // the first scene is loaded here so that run_gui can exit with code 2 before opening a window
+  scene_ = factory_.load(scene_path_, overrides_);
+  model_ = factory_.build(scene_);
+  scene_generation_ = 1;
+  log_.add("loaded scene '" + scene_.name + "' from " + scene_path_);
+  publish();
+}
+
+SimWorker::~SimWorker() { stop(); }
+
+void SimWorker::start(bool run, double speed) {
+  if (thread_.joinable()) return;
+  running_ = run;
+  speed_ = speed;
+  reanchor();
+  publish();
+  thread_ = std::thread([this] { loop(); });
+}
+
+void SimWorker::stop() {
+  if (!thread_.joinable()) return;
+  quitting_ = true;
+  send(SimCommand::make(SimCommand::Kind::kQuit));
+  record_space_.notify_all();
+  thread_.join();
+}
+
+WorkerStatus SimWorker::status() const {
+  std::lock_guard<std::mutex> lock(status_mutex_);
+  return status_;
+}
+
+bool SimWorker::take_recorded(Snapshot& out) {
+  std::lock_guard<std::mutex> lock(record_mutex_);
+  if (recorded_.empty()) return false;
+  out = std::move(recorded_.front());
+  recorded_.pop_front();
+  record_space_.notify_all();
+  return true;
+}
+
+void SimWorker::reanchor() {
+  anchor_wall_ = Clock::now();
+  anchor_sim_ = model_->time();
+  rate_wall_ = anchor_wall_;
+  rate_steps_ = model_->step_count();
+  rate_sim_ = model_->time();
+}
+
+void SimWorker::publish() {
+  // the snapshot first, then the status that describes it
+  model_->fill_snapshot(exchange_.back());
+  exchange_.publish();
+  WorkerStatus s;
+  s.running = running_;
+  s.time = model_->time();
+  s.step = model_->step_count();
+  s.end_time = model_->end_time();
+  s.speed = speed_;
+  s.steps_per_second = running_ ? steps_per_second_ : 0.0;
+  s.sim_seconds_per_second = running_ ? sim_per_second_ : 0.0;
+  s.settings = model_->settings();
+  s.info = model_->info();
+  s.scene_path = scene_path_;
+  s.scene_name = scene_.name;
+  s.generation = generation_;
+  s.scene_generation = scene_generation_;
+  s.numerical_error = numerical_error_;
+  s.numerical_message = numerical_message_;
+  s.load_error = load_error_;
+  s.commands_applied = applied_;
+  s.recording = record_interval_ > 0.0;
+  std::lock_guard<std::mutex> lock(status_mutex_);
+  status_ = std::move(s);
+}
+
+void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* what) {
+  // build the new model completely before replacing the old one, so a failure keeps it
+  const LiveSettings kept = model_->settings();
+  std::unique_ptr<SteppedModel> fresh = factory_.build(scene);
+  if (keep_settings) fresh->apply(kept);
+  model_ = std::move(fresh);
+  ++generation_;
+  numerical_error_.reset();
+  numerical_message_.clear();
+  running_ = false;
+  pending_steps_ = 0;
+  reanchor();
+  log_.add(std::string(what) + ": scene '" + scene.name + "' at t = 0, paused");
+}
+
+void SimWorker::load_from_disk(const std::string& path, const std::vector<std::string>& overrides,
+                               const char* what) {
+  try {
+    SceneDef scene = factory_.load(path, overrides);
+    rebuild(scene, false, what);
+    scene_ = std::move(scene);
+    scene_path_ = path;
+    overrides_ = overrides;
+    ++scene_generation_;
+    load_error_.clear();
+  } catch (const InputError& e) {
+    load_error_ = e.what();
+    log_.add(std::string(what) + " failed, keeping the current scene: " + e.what());
+  } catch (const NumericalError& e) {
+    load_error_ = e.what();
+    log_.add(std::string(what) + " failed at initialisation, keeping the current scene: " + e.what());
+  } catch (const std::exception& e) {
+    load_error_ = e.what();
+    log_.add(std::string(what) + " failed, keeping the current scene: " + e.what());
+  }
+}
+
+void SimWorker::apply(SimCommand& c) {
+  using Kind = SimCommand::Kind;
+  ++applied_;
+  const std::string by = " (" + c.origin + ")";
+  switch (c.kind) {
+    case Kind::kRun:
+    case Kind::kToggleRun:
+      if (c.kind == Kind::kToggleRun && running_) {
+        running_ = false;
+        log_.add("pause at t = " + std::to_string(model_->time()) + by);
+        break;
+      }
+      if (numerical_error_) {
+        log_.add("cannot run: the last step failed; reset, reload or change a setting first" + by);
+        break;
+      }
+      running_ = true;
+      pending_steps_ = 0;
+      reanchor();
+      log_.add("run at " + describe_speed(speed_) + by);
+      break;
+    case Kind::kPause:
+      running_ = false;
+      pending_steps_ = 0;
+      log_.add("pause at t = " + std::to_string(model_->time()) + by);
+      break;
+    case Kind::kStep:
+      if (numerical_error_) {
+        log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
+        break;
+      }
+      running_ = false;
+      pending_steps_ += c.count > 0 ? c.count : 1;
+      log_.add("step x" + std::to_string(c.count > 0 ? c.count : 1) + by);
+      break;
+    case Kind::kReset:
+      try {
+        rebuild(scene_, true, ("reset" + by).c_str());
+      } catch (const std::exception& e) {
+        log_.add("reset failed, keeping the current model: " + std::string(e.what()));
+      }
+      break;
+    case Kind::kReload:
+      load_from_disk(scene_path_, overrides_, ("reload of " + scene_path_ + by).c_str());
+      break;
+    case Kind::kLoadScene:
+      // overrides given on the command line belong to the first scene only
+      load_from_disk(c.text, {}, ("switch to " + c.text + by).c_str());
+      break;
+    case Kind::kApplySettings:
+      try {
+        model_->apply(c.settings);
+        numerical_error_.reset();
+        numerical_message_.clear();
+        log_.add("settings: " + describe_settings(model_->settings()) + by);
+      } catch (const std::exception& e) {
+        log_.add("settings rejected: " + std::string(e.what()) + by);
+      }
+      break;
+    case Kind::kSetParameter: {
+      LiveSettings s = model_->settings();
+      const std::string problem = set_live_parameter(s, c.text, c.value);
+      if (!problem.empty()) {
+        log_.add("set " + c.text + "=" + c.value + " rejected: " + problem + by);
+        break;
+      }
+      try {
+        model_->apply(s);
+        numerical_error_.reset();
+        numerical_message_.clear();
+        log_.add("set " + c.text + "=" + c.value + by);
+      } catch (const std::exception& e) {
+        log_.add("set " + c.text + "=" + c.value + " rejected: " + e.what() + by);
+      }
+      break;
+    }
+    case Kind::kSetSpeed:
+      speed_ = c.number;
+      reanchor();
+      log_.add("speed " + describe_speed(speed_) + by);
+      break;
+    case Kind::kMouseSpring:
+      model_->set_mouse_spring(c.spring);
+      // dragging sends a command per frame: log only grabbing and releasing
+      if (!c.spring) log_.add("mouse spring released" + by);
+      else if (c.count == 1) {
+        log_.add(c.spring->body >= 0 ? "grab body " + std::to_string(c.spring->body) + by
+                                     : "grab particle " + std::to_string(c.spring->particle) + by);
+      }
+      break;
+    case Kind::kRecord:
+      record_interval_ = c.number > 0.0 ? c.number : 0.0;
+      next_record_ = model_->time();
+      log_.add(record_interval_ > 0.0 ? "recording every " + std::to_string(record_interval_) + " s" + by
+                                      : "recording stopped" + by);
+      // the first frame is the state at the moment recording starts
+      record_if_due();
+      break;
+    case Kind::kQuit:
+      break;
+  }
+}
+
+void SimWorker::record_if_due() {
+  if (record_interval_ <= 0.0 || model_->time() + 1e-12 * record_interval_ < next_record_) return;
+  // frames at fixed simulated times: one per crossed interval mark
+  while (next_record_ <= model_->time() + 1e-12 * record_interval_) next_record_ += record_interval_;
+  Snapshot frame;
+  model_->fill_snapshot(frame);
+  std::unique_lock<std::mutex> lock(record_mutex_);
+  record_space_.wait(lock, [this] { return recorded_.size() < kMaxRecorded || quitting_; });
+  recorded_.push_back(std::move(frame));
+}
+
+void SimWorker::loop() {
+  Clock::time_point last_publish = Clock::now();
+  for (;;) {
+    // requests first: they land between two steps, in the order they were sent
+    bool changed = false;
+    for (SimCommand& c : commands_.drain()) {
+      if (c.kind == SimCommand::Kind::kQuit) return;
+      apply(c);
+      changed = true;
+    }
+    if (changed) publish();
+
+    // paused: sleep until a request arrives
+    if (!running_ && pending_steps_ == 0) {
+      commands_.wait_for(std::chrono::milliseconds(50));
+      continue;
+    }
+
+    // paced: wait while the simulation is ahead of wall time x speed
+    if (running_ && speed_ > 0.0) {
+      const double wall = std::chrono::duration<double>(Clock::now() - anchor_wall_).count();
+      const double target = anchor_sim_ + speed_ * wall;
+      if (model_->time() >= target) {
+        const double ahead = (model_->time() - target) / speed_;
+        commands_.wait_for(std::chrono::duration<double>(std::min(ahead, 0.01)));
+        if (Clock::now() - last_publish > std::chrono::duration<double>(kPublishInterval)) {
+          publish();
+          last_publish = Clock::now();
+        }
+        continue;
+      }
+      if ((target - model_->time()) / speed_ > kMaxLag) {
+        anchor_wall_ = Clock::now() - std::chrono::duration_cast<Clock::duration>(
+                                          std::chrono::duration<double>(kMaxLag));
+        anchor_sim_ = model_->time();
+      }
+    }
+
+    // one step; a numerical failure pauses the run and is shown, never thrown further
+    const bool before_end = model_->end_time() > 0.0 && model_->time() < model_->end_time();
+    try {
+      model_->step();
+    } catch (const NumericalError& e) {
+      running_ = false;
+      pending_steps_ = 0;
+      numerical_error_ = e.diagnostic();
+      numerical_message_ = e.what();
+      log_.add(std::string("numerical failure, paused: ") + e.what());
+      publish();
+      continue;
+    } catch (const std::exception& e) {
+      running_ = false;
+      pending_steps_ = 0;
+      numerical_error_ = NumericalDiagnostic{"step", model_->step_count(), model_->time(), e.what(), ""};
+      numerical_message_ = e.what();
+      log_.add(std::string("step failed, paused: ") + e.what());
+      publish();
+      continue;
+    }
+    record_if_due();
+
+    bool publish_now = false;
+    if (pending_steps_ > 0 && --pending_steps_ == 0) publish_now = true;
+    // the scene's end time pauses a run once; pressing run again continues past it
+    if (running_ && before_end && model_->time() >= model_->end_time()) {
+      running_ = false;
+      publish_now = true;
+      log_.add("reached the scene's end time t = " + std::to_string(model_->end_time()) + ", paused");
+    }
+
+    // rates over a sliding half second
+    const Clock::time_point now = Clock::now();
+    const double span = std::chrono::duration<double>(now - rate_wall_).count();
+    if (span >= kRateWindow) {
+      steps_per_second_ = (model_->step_count() - rate_steps_) / span;
+      sim_per_second_ = (model_->time() - rate_sim_) / span;
+      rate_wall_ = now;
+      rate_steps_ = model_->step_count();
+      rate_sim_ = model_->time();
+    }
+    if (publish_now || std::chrono::duration<double>(now - last_publish).count() >= kPublishInterval) {
+      publish();
+      last_publish = now;
+    }
+  }
+}
+
+}  // namespace periflex

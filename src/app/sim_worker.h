@@ -1,0 +1,148 @@
+// The simulation thread (as MuJoCo's simulate runs physics): it owns the model, steps it at
+// the requested pace, applies requests from the CommandQueue between steps, and publishes
+// snapshots through a SnapshotExchange so the render thread never waits for a step.
+// A NumericalError pauses the run and is reported in the status; a scene that fails to load
+// on reload or switch is reported and the old model kept. No GL here.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/command_queue.h"
+#include "app/event_log.h"
+#include "app/sim_command.h"
+#include "app/snapshot_exchange.h"
+#include "solve/simulation.h"
+
+namespace periflex {
+
+// What the worker steps: the Simulation in the program, small fakes in the tests.
+class SteppedModel {
+ public:
+  virtual ~SteppedModel() = default;
+  virtual void step() = 0;                                     // may throw NumericalError
+  virtual double time() const = 0;
+  virtual long step_count() const = 0;
+  virtual double end_time() const = 0;
+  virtual const ModelInfo& info() const = 0;
+  virtual void fill_snapshot(Snapshot& out) const = 0;
+  virtual LiveSettings settings() const = 0;
+  virtual void apply(const LiveSettings& settings) = 0;         // may throw InputError
+  virtual void set_mouse_spring(const std::optional<MouseSpring>& spring) = 0;
+};
+
+// How the worker gets scenes and models: load reads a file (throws InputError), build makes a
+// ready-to-step model from a scene (throws InputError or NumericalError).
+struct ModelFactory {
+  std::function<SceneDef(const std::string& path, const std::vector<std::string>& overrides)> load;
+  std::function<std::unique_ptr<SteppedModel>(const SceneDef& scene)> build;
+};
+
+// The factory the program uses: scene/scene_loader.h and solve/simulation.h.
+ModelFactory simulation_model_factory();
+
+// A copy of the worker's state for the panels, refreshed whenever a snapshot is published.
+struct WorkerStatus {
+  bool running = false;
+  double time = 0.0;
+  long step = 0;
+  double end_time = 0.0;
+  double speed = 1.0;                 // real-time factor; <= 0: as fast as possible
+  double steps_per_second = 0.0;      // measured over the last half second of running
+  double sim_seconds_per_second = 0.0;
+  LiveSettings settings;
+  ModelInfo info;
+  std::string scene_path;
+  std::string scene_name;
+  long generation = 0;                // grows when the model is rebuilt (reset, reload, switch)
+  long scene_generation = 0;          // grows when a scene is (re)loaded from disk
+  std::optional<NumericalDiagnostic> numerical_error;  // the last failure; cleared by reset/reload
+  std::string numerical_message;      // its what()
+  std::string load_error;             // the last failed reload or switch; cleared by a good one
+  long commands_applied = 0;
+  bool recording = false;
+};
+
+class SimWorker {
+ public:
+  // Loads and builds the first scene in the calling thread, so a bad scene is reported
+  // before any window opens. Throws InputError or NumericalError. Call start() to step.
+  SimWorker(ModelFactory factory, const std::string& scene_path, std::vector<std::string> overrides,
+            EventLog& log);
+  ~SimWorker();
+  SimWorker(const SimWorker&) = delete;
+  SimWorker& operator=(const SimWorker&) = delete;
+
+  // Starts the simulation thread, paused unless `run` is true, at real-time factor `speed`.
+  void start(bool run, double speed);
+  // Asks the thread to finish after the current step and waits for it.
+  void stop();
+
+  // Queues a request; it is applied between two steps.
+  void send(SimCommand command) { commands_.push(std::move(command)); }
+  // Render side: take the newest snapshot (true when it changed) and read it.
+  bool update_snapshot() { return exchange_.update(); }
+  const Snapshot& snapshot() const { return exchange_.front(); }
+  bool has_snapshot() const { return exchange_.has_front(); }
+  WorkerStatus status() const;
+
+  // Render side: the next snapshot published for recording (at a fixed simulated interval),
+  // if any. The simulation thread waits when `kMaxRecorded` are pending, which bounds memory.
+  bool take_recorded(Snapshot& out);
+  static constexpr size_t kMaxRecorded = 8;
+
+ private:
+  void loop();
+  void apply(SimCommand& command);
+  void rebuild(const SceneDef& scene, bool keep_settings, const char* what);
+  void load_from_disk(const std::string& path, const std::vector<std::string>& overrides, const char* what);
+  void publish();
+  void record_if_due();
+  void reanchor();
+
+  using Clock = std::chrono::steady_clock;
+
+  ModelFactory factory_;
+  EventLog& log_;
+  CommandQueue<SimCommand> commands_;
+  SnapshotExchange<Snapshot> exchange_;
+  std::thread thread_;
+
+  // owned by the simulation thread (and by the constructor before start)
+  std::unique_ptr<SteppedModel> model_;
+  SceneDef scene_;
+  std::string scene_path_;
+  std::vector<std::string> overrides_;
+  bool running_ = false;
+  int pending_steps_ = 0;
+  double speed_ = 1.0;
+  Clock::time_point anchor_wall_;
+  double anchor_sim_ = 0.0;
+  Clock::time_point rate_wall_;
+  long rate_steps_ = 0;
+  double rate_sim_ = 0.0;
+  double steps_per_second_ = 0.0, sim_per_second_ = 0.0;
+  double record_interval_ = 0.0, next_record_ = 0.0;
+  long generation_ = 0, scene_generation_ = 0, applied_ = 0;
+  std::optional<NumericalDiagnostic> numerical_error_;
+  std::string numerical_message_, load_error_;
+
+  mutable std::mutex status_mutex_;
+  WorkerStatus status_;
+
+  std::mutex record_mutex_;
+  std::condition_variable record_space_;
+  std::deque<Snapshot> recorded_;
+  std::atomic<bool> quitting_{false};
+};
+
+}  // namespace periflex

@@ -1,0 +1,41 @@
+// The worker's model in the program: a Simulation built from a scene file.
+#include <memory>
+
+#include "app/sim_worker.h"
+#include "scene/scene_loader.h"
+
+namespace periflex {
+
+namespace {
+
+class SimulationModel final : public SteppedModel {
+ public:
+  explicit SimulationModel(const SceneDef& scene) : sim_(scene) { sim_.initialize(); }
+  void step() override { sim_.step(); }
+  double time() const override { return sim_.time(); }
+  long step_count() const override { return sim_.step_count(); }
+  double end_time() const override { return sim_.end_time(); }
+  const ModelInfo& info() const override { return sim_.info(); }
+  void fill_snapshot(Snapshot& out) const override { sim_.fill_snapshot(out); }
+  LiveSettings settings() const override { return sim_.settings(); }
+  void apply(const LiveSettings& settings) override { sim_.apply(settings); }
+  void set_mouse_spring(const std::optional<MouseSpring>& spring) override { sim_.set_mouse_spring(spring); }
+
+ private:
+  Simulation sim_;
+};
+
+}  // namespace
+
+ModelFactory simulation_model_factory() {
+  ModelFactory f;
+  f.load = [](const std::string& path, const std::vector<std::string>& overrides) {
+    return load_scene(path, overrides);
+  };
+  f.build = [](const SceneDef& scene) -> std::unique_ptr<SteppedModel> {
+    return std::make_unique<SimulationModel>(scene);
+  };
+  return f;
+}
+
+}  // namespace periflex

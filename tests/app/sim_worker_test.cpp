@@ -1,0 +1,293 @@
+// The simulation thread: requests are applied between steps in the order sent, stepping
+// follows run/pause/step, pacing never runs ahead of wall time, and failures pause the run
+// (numerical) or keep the old scene (bad file) instead of escaping the thread.
+#include "app/sim_worker.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/error.h"
+
+namespace periflex {
+namespace {
+
+using namespace std::chrono_literals;
+
+// What the fake records; written by the simulation thread only, read after stop() joins it.
+struct FakeLog {
+  std::vector<std::string> events;
+  long applied_during_step = 0;
+  std::thread::id step_thread, apply_thread;
+  bool threads_differ = false;
+};
+
+class FakeModel final : public SteppedModel {
+ public:
+  FakeModel(FakeLog& log, double dt, double end_time, long fail_at_step)
+      : log_(log), end_time_(end_time), fail_at_step_(fail_at_step) {
+    settings_.dt = dt;
+    settings_.integrator = "fake";
+  }
+  void step() override {
+    in_step_ = true;
+    if (log_.step_thread == std::thread::id()) log_.step_thread = std::this_thread::get_id();
+    if (log_.step_thread != std::this_thread::get_id()) log_.threads_differ = true;
+    if (fail_at_step_ >= 0 && steps_ + 1 >= fail_at_step_) {
+      in_step_ = false;
+      NumericalDiagnostic d;
+      d.quantity = "kinetic energy";
+      d.step = steps_ + 1;
+      d.time = time_;
+      d.cause = "test failure";
+      d.remedy = "none";
+      throw NumericalError(d);
+    }
+    // a little work, so requests have a chance to arrive while a step is under way
+    volatile double x = 0.0;
+    for (int i = 0; i < 200; ++i) x = x + i;
+    time_ += settings_.dt;
+    ++steps_;
+    log_.events.push_back("step");
+    in_step_ = false;
+  }
+  double time() const override { return time_; }
+  long step_count() const override { return steps_; }
+  double end_time() const override { return end_time_; }
+  const ModelInfo& info() const override { return info_; }
+  void fill_snapshot(Snapshot& out) const override {
+    out.time = time_;
+    out.step = steps_;
+  }
+  LiveSettings settings() const override { return settings_; }
+  void apply(const LiveSettings& s) override {
+    if (in_step_) ++log_.applied_during_step;
+    log_.apply_thread = std::this_thread::get_id();
+    if (log_.step_thread != std::thread::id() && log_.apply_thread != log_.step_thread) log_.threads_differ = true;
+    settings_ = s;
+    log_.events.push_back("apply " + std::to_string(static_cast<long>(s.bond_damping)));
+  }
+  void set_mouse_spring(const std::optional<MouseSpring>&) override {}
+
+ private:
+  FakeLog& log_;
+  LiveSettings settings_;
+  ModelInfo info_;
+  double time_ = 0.0;
+  long steps_ = 0;
+  double end_time_;
+  long fail_at_step_;
+  bool in_step_ = false;
+};
+
+// Scenes are named by path; "bad.toml" fails to load as a malformed file would.
+ModelFactory fake_factory(FakeLog& log, double dt, double end_time = 1e9, long fail_at_step = -1) {
+  ModelFactory f;
+  f.load = [](const std::string& path, const std::vector<std::string>&) {
+    if (path == "bad.toml") throw InputError({path, 3, 1, "bodies.crank.mass"}, "mass must be positive");
+    SceneDef s;
+    s.name = path;
+    s.path = path;
+    return s;
+  };
+  f.build = [&log, dt, end_time, fail_at_step](const SceneDef&) -> std::unique_ptr<SteppedModel> {
+    return std::make_unique<FakeModel>(log, dt, end_time, fail_at_step);
+  };
+  return f;
+}
+
+// Polls the worker's status until `done` holds or a generous timeout passes.
+bool wait_until(const SimWorker& worker, const std::function<bool(const WorkerStatus&)>& done) {
+  const auto give_up = std::chrono::steady_clock::now() + 20s;
+  while (std::chrono::steady_clock::now() < give_up) {
+    if (done(worker.status())) return true;
+    std::this_thread::sleep_for(1ms);
+  }
+  return false;
+}
+
+SimCommand set_bond_damping(long value) {
+  SimCommand c = SimCommand::make(SimCommand::Kind::kSetParameter, "test");
+  c.text = "bond_damping";
+  c.value = std::to_string(value);
+  return c;
+}
+
+TEST(SimWorker, RequestsApplyBetweenStepsInTheOrderSent) {
+  FakeLog log;
+  EventLog events(false);
+  constexpr long kRequests = 300;
+  {
+    SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+    worker.start(true, 0.0);  // as fast as possible, so steps and requests interleave
+    for (long i = 1; i <= kRequests; ++i) {
+      worker.send(set_bond_damping(i));
+      if (i % 50 == 0) std::this_thread::sleep_for(1ms);
+    }
+    // the start itself counts as no request; all kRequests must be applied
+    ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.commands_applied >= kRequests; }));
+    worker.stop();
+  }
+  // the applies are in order, none lost, none inside a step, all on the stepping thread
+  long expected = 1, steps_between = 0;
+  for (const std::string& e : log.events) {
+    if (e == "step") {
+      ++steps_between;
+      continue;
+    }
+    EXPECT_EQ(e, "apply " + std::to_string(expected));
+    ++expected;
+  }
+  EXPECT_EQ(expected, kRequests + 1);
+  EXPECT_EQ(log.applied_during_step, 0);
+  EXPECT_FALSE(log.threads_differ);
+  EXPECT_GT(steps_between, 0);
+}
+
+TEST(SimWorker, PausedWorkerTakesExactlyTheStepsAsked) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+  worker.start(false, 1.0);
+  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
+  step.count = 5;
+  worker.send(step);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 5; }));
+  // paused again after the five: no further steps happen
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(worker.status().step, 5);
+  EXPECT_FALSE(worker.status().running);
+  // the render side sees the snapshot of step 5
+  ASSERT_TRUE(worker.update_snapshot());
+  EXPECT_EQ(worker.snapshot().step, 5);
+  EXPECT_NEAR(worker.snapshot().time, 5e-3, 1e-15);  // five sums of 1e-3: rounding only
+  worker.stop();
+}
+
+TEST(SimWorker, PacedRunNeverGetsAheadOfWallTime) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+  constexpr double kSpeed = 0.1;
+  const auto start = std::chrono::steady_clock::now();
+  worker.start(true, kSpeed);
+  std::this_thread::sleep_for(200ms);
+  const WorkerStatus s = worker.status();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  worker.stop();
+  // the worker may be at most one step ahead of speed x elapsed wall time
+  EXPECT_LE(s.time, kSpeed * wall + 1e-3);
+  EXPECT_TRUE(s.running);
+}
+
+TEST(SimWorker, NumericalFailurePausesAndReportsUntilReset) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3, 1e9, 10), "a.toml", {}, events);
+  worker.start(true, 0.0);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.numerical_error.has_value(); }));
+  WorkerStatus s = worker.status();
+  EXPECT_FALSE(s.running);
+  EXPECT_EQ(s.step, 9);  // the tenth step threw
+  EXPECT_EQ(s.numerical_error->quantity, "kinetic energy");
+  EXPECT_NE(s.numerical_message.find("kinetic energy"), std::string::npos);
+  // run is refused while the failure stands
+  worker.send(SimCommand::make(SimCommand::Kind::kRun, "test"));
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& st) { return st.commands_applied >= 1; }));
+  EXPECT_FALSE(worker.status().running);
+  // reset clears it and starts again from t = 0
+  worker.send(SimCommand::make(SimCommand::Kind::kReset, "test"));
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& st) { return st.commands_applied >= 2; }));
+  s = worker.status();
+  EXPECT_FALSE(s.numerical_error.has_value());
+  EXPECT_EQ(s.step, 0);
+  EXPECT_EQ(s.generation, 1);
+  worker.stop();
+}
+
+TEST(SimWorker, BadReloadKeepsTheCurrentSceneAndSaysWhy) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+  worker.start(false, 1.0);
+  SimCommand load = SimCommand::make(SimCommand::Kind::kLoadScene, "test");
+  load.text = "bad.toml";
+  worker.send(load);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.commands_applied >= 1; }));
+  WorkerStatus s = worker.status();
+  EXPECT_EQ(s.scene_path, "a.toml");
+  EXPECT_EQ(s.scene_generation, 1);
+  EXPECT_NE(s.load_error.find("mass must be positive"), std::string::npos);
+  // a good switch afterwards clears the message
+  load.text = "b.toml";
+  worker.send(load);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& st) { return st.commands_applied >= 2; }));
+  s = worker.status();
+  EXPECT_EQ(s.scene_path, "b.toml");
+  EXPECT_EQ(s.scene_generation, 2);
+  EXPECT_TRUE(s.load_error.empty());
+  worker.stop();
+}
+
+TEST(SimWorker, EndTimePausesTheRunOnce) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3, 0.02), "a.toml", {}, events);
+  worker.start(true, 0.0);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return !s.running; }));
+  // 0.02 s reached after twenty 1e-3 steps, give or take one for rounding of the sum
+  EXPECT_NEAR(worker.status().step, 20, 1);
+  worker.stop();
+}
+
+TEST(SimWorker, RecordingPublishesOneFramePerSimulatedInterval) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+  worker.start(false, 1.0);
+  SimCommand rec = SimCommand::make(SimCommand::Kind::kRecord, "test");
+  rec.number = 4e-3;
+  worker.send(rec);
+  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
+  step.count = 6;
+  worker.send(step);
+  // frames at the start (step 0) and then every 4e-3 s: steps 0 and 4 of the six
+  std::vector<long> steps;
+  const auto give_up = std::chrono::steady_clock::now() + 20s;
+  Snapshot frame;
+  while (steps.size() < 2 && std::chrono::steady_clock::now() < give_up) {
+    if (worker.take_recorded(frame)) steps.push_back(frame.step);
+    else std::this_thread::sleep_for(1ms);
+  }
+  ASSERT_EQ(steps.size(), 2u);
+  EXPECT_EQ(steps[0], 0);
+  EXPECT_EQ(steps[1], 4);
+  worker.stop();
+}
+
+TEST(LiveParameter, ParsesKnownKeysAndRejectsBadValues) {
+  LiveSettings s;
+  s.dt = 1e-3;
+  EXPECT_EQ(set_live_parameter(s, "bond_damping", "0.1"), "");
+  EXPECT_DOUBLE_EQ(s.bond_damping, 0.1);
+  EXPECT_EQ(set_live_parameter(s, "fracture", "off"), "");
+  EXPECT_FALSE(s.fracture);
+  EXPECT_EQ(set_live_parameter(s, "correction", "projection"), "");
+  EXPECT_EQ(s.correction.method, CorrectionDef::Method::kProjection);
+  EXPECT_EQ(set_live_parameter(s, "integrator", "rk4"), "");
+  EXPECT_EQ(s.integrator, "rk4");
+  // bad values leave the settings as they were
+  EXPECT_NE(set_live_parameter(s, "dt", "0"), "");
+  EXPECT_NE(set_live_parameter(s, "dt", "fast"), "");
+  EXPECT_NE(set_live_parameter(s, "alpha", "-1"), "");
+  EXPECT_NE(set_live_parameter(s, "colour", "red"), "");
+  EXPECT_DOUBLE_EQ(s.dt, 1e-3);
+}
+
+}  // namespace
+}  // namespace periflex

@@ -1,0 +1,421 @@
+#include "app/gui_app.h"
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+
+#include "app/picking.h"
+#include "app/view_fit.h"
+#include "core/error.h"
+#include "core/resources.h"
+#include "render/gl.h"
+#include "render/image.h"
+
+namespace periflex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// a wait or expectation that takes longer than this (wall seconds) fails the script
+constexpr double kScriptTimeout = 120.0;
+// pixels within which the mouse grabs a particle
+constexpr double kPickPixels = 6.0;
+
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+bool same_settings(const LiveSettings& a, const LiveSettings& b) {
+  return a.integrator == b.integrator && a.dt == b.dt && a.correction.method == b.correction.method &&
+         a.correction.alpha == b.correction.alpha && a.correction.beta == b.correction.beta &&
+         a.correction.tolerance == b.correction.tolerance &&
+         a.correction.max_iterations == b.correction.max_iterations && a.bond_damping == b.bond_damping &&
+         a.global_damping == b.global_damping && a.fracture == b.fracture;
+}
+
+}  // namespace
+
+GuiApp::GuiApp(const GuiOptions& options, std::vector<ScriptAction> script, EventLog& log, SimWorker& worker,
+               GLFWwindow* window, const std::string& resource_root)
+    : options_(options), script_(std::move(script)), log_(log), worker_(worker), window_(window),
+      resource_root_(resource_root) {
+  renderer_ = std::make_unique<Renderer>(resource_root_);
+  scenes_ = list_scenes();
+}
+
+GuiApp::~GuiApp() { stop_recording(); }
+
+void GuiApp::send(SimCommand command) {
+  ++sent_;
+  worker_.send(std::move(command));
+}
+
+void GuiApp::script_failure(const std::string& what) {
+  log_.add("script: " + what);
+  exit_code_ = kExitOther;
+}
+
+std::string GuiApp::resolve_scene_path(const std::string& path) const {
+  // as given, else relative to the shipped scenes
+  if (fs::exists(path)) return path;
+  const fs::path shipped = fs::path(resource_root_) / "scenes" / path;
+  if (fs::exists(shipped)) return shipped.string();
+  return path;
+}
+
+std::vector<std::string> GuiApp::list_scenes() const {
+  // every .toml under scenes/, by path relative to it
+  std::vector<std::string> out;
+  const fs::path root = fs::path(resource_root_) / "scenes";
+  std::error_code ec;
+  if (!fs::is_directory(root, ec)) return out;
+  for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); ++it) {
+    if (it->is_regular_file() && it->path().extension() == ".toml") {
+      out.push_back(fs::relative(it->path(), root).string());
+    }
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+std::string GuiApp::default_screenshot_name() const {
+  char name[160];
+  std::snprintf(name, sizeof name, "periflex_%s_t%.6g.png",
+                status_.scene_name.empty() ? "scene" : status_.scene_name.c_str(), status_.time);
+  std::string s = name;
+  std::replace(s.begin(), s.end(), ' ', '_');
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// snapshot and status of this frame
+
+void GuiApp::take_snapshot() {
+  worker_.update_snapshot();
+  status_ = worker_.status();
+  const Snapshot& snap = worker_.snapshot();
+  // a rebuilt model starts new plots; a scene loaded from disk is framed again
+  if (status_.generation != seen_generation_) {
+    history_.clear();
+    renderer_->clear_trails();
+    seen_generation_ = status_.generation;
+  }
+  if (status_.scene_generation != seen_scene_generation_) {
+    seen_scene_generation_ = status_.scene_generation;
+    fit_pending_ = true;
+    follow_ = -1;
+    const auto found = std::find(scenes_.begin(), scenes_.end(),
+                                 fs::path(status_.scene_path).filename().string());
+    scene_choice_ = found == scenes_.end() ? -1 : static_cast<int>(found - scenes_.begin());
+  }
+  if (worker_.has_snapshot()) history_.add(snap, status_.steps_per_second);
+}
+
+// ---------------------------------------------------------------------------------------------
+// script
+
+bool GuiApp::script_blocked() {
+  if (!wait_time_ && !pending_expect_) return false;
+  // the simulation thread must have applied everything sent before the condition is judged
+  const bool synced = status_.commands_applied >= sent_;
+  const bool timed_out = wall_seconds() - block_started_ > kScriptTimeout;
+  if (wait_time_) {
+    if (synced && (status_.time >= *wait_time_ || !status_.running)) {
+      log_.add("script: wait ended at t = " + std::to_string(status_.time));
+      wait_time_.reset();
+    } else if (timed_out) {
+      script_failure("wait for t = " + std::to_string(*wait_time_) + " timed out at t = " +
+                     std::to_string(status_.time));
+      wait_time_.reset();
+    }
+    return wait_time_.has_value();
+  }
+  if (synced) {
+    const ScriptAction a = *pending_expect_;
+    pending_expect_.reset();
+    evaluate_expectation(a);
+    return false;
+  }
+  if (timed_out) {
+    script_failure("'" + pending_expect_->text + "' timed out waiting for the simulation thread");
+    pending_expect_.reset();
+  }
+  return pending_expect_.has_value();
+}
+
+bool GuiApp::run_script() {
+  for (;;) {
+    if (script_blocked()) return false;
+    if (next_action_ >= script_.size() || script_[next_action_].frame > frame_) return true;
+    execute(script_[next_action_++]);
+  }
+}
+
+void GuiApp::execute(const ScriptAction& a) {
+  using Kind = SimCommand::Kind;
+  const std::string& verb = a.verb;
+  const auto command = [](Kind kind) { return SimCommand::make(kind, "script"); };
+  log_.add("script @" + std::to_string(a.frame) + ": " + a.text);
+  if (verb == "run" || verb == "resume") send(command(Kind::kRun));
+  else if (verb == "pause") send(command(Kind::kPause));
+  else if (verb == "step") {
+    SimCommand c = command(Kind::kStep);
+    c.count = a.args.empty() ? 1 : std::atoi(a.args[0].c_str());
+    send(c);
+  } else if (verb == "reset") send(command(Kind::kReset));
+  else if (verb == "reload") send(command(Kind::kReload));
+  else if (verb == "scene") {
+    SimCommand c = command(Kind::kLoadScene);
+    c.text = resolve_scene_path(a.args[0]);
+    send(c);
+  } else if (verb == "set") {
+    const size_t eq = a.args[0].find('=');
+    SimCommand c = command(Kind::kSetParameter);
+    c.text = a.args[0].substr(0, eq);
+    c.value = a.args[0].substr(eq + 1);
+    send(c);
+  } else if (verb == "speed") {
+    SimCommand c = command(Kind::kSetSpeed);
+    c.number = a.args[0] == "max" ? 0.0 : std::atof(a.args[0].c_str());
+    send(c);
+  } else if (verb == "colormap") {
+    const auto names = renderer_->colormap_names();
+    if (std::find(names.begin(), names.end(), a.args[0]) == names.end()) {
+      script_failure("unknown colour map '" + a.args[0] + "'");
+    } else {
+      render_.colormap = a.args[0];
+    }
+  } else if (verb == "field") {
+    parse_field_name(a.args[0], render_.field);
+  } else if (verb == "range") {
+    render_.auto_range = a.args[0] == "auto";
+    if (!render_.auto_range) {
+      render_.range_min = static_cast<float>(std::atof(a.args[0].c_str()));
+      render_.range_max = static_cast<float>(std::atof(a.args[1].c_str()));
+    }
+  } else if (verb == "show") {
+    const bool on = a.args[1] == "on";
+    const std::string& layer = a.args[0];
+    if (layer == "bodies") render_.show_bodies = on;
+    else if (layer == "markers") render_.show_markers = on;
+    else if (layer == "springs") render_.show_springs = on;
+    else if (layer == "bonds") render_.show_bonds = on;
+    else if (layer == "probes") render_.show_probes = on;
+    else if (layer == "trails") render_.show_trails = on;
+    else render_.show_overlay = on;
+  } else if (verb == "fit") {
+    fit_pending_ = true;
+    follow_ = -1;
+  } else if (verb == "follow") {
+    follow_ = -1;
+    const Snapshot& s = worker_.snapshot();
+    if (a.args[0] != "none" && s.geometry) {
+      for (size_t b = 1; b < s.geometry->bodies.size(); ++b) {
+        if (s.geometry->bodies[b].name == a.args[0]) follow_ = static_cast<int>(b);
+      }
+      if (follow_ < 0) script_failure("no rigid body named '" + a.args[0] + "' to follow");
+    }
+  } else if (verb == "screenshot") {
+    pending_screenshot_ = a.args[0];
+  } else if (verb == "record") {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window_, &w, &h);
+    start_recording(a.args[0], std::atof(a.args[1].c_str()), record_fps_, w, h);
+    if (!writer_) script_failure("recording did not start: " + record_message_);
+  } else if (verb == "stop_record") {
+    stop_recording();
+  } else if (verb == "wait") {
+    wait_time_ = std::atof(a.args[0].c_str());
+    block_started_ = wall_seconds();
+  } else if (verb == "expect") {
+    pending_expect_ = a;
+    block_started_ = wall_seconds();
+  } else if (verb == "quit") {
+    quit_ = true;
+  }
+}
+
+void GuiApp::evaluate_expectation(const ScriptAction& a) {
+  const std::string& what = a.args[0];
+  std::string failure;
+  if (what == "running" || what == "paused") {
+    if (status_.running != (what == "running")) failure = std::string("the simulation is ") +
+                                                         (status_.running ? "running" : "paused");
+  } else if (what.find('=') != std::string::npos) {
+    const std::string key = what.substr(0, what.find('='));
+    const std::string value = what.substr(what.find('=') + 1);
+    if (key == "colormap") {
+      if (render_.colormap != value) failure = "colour map is " + render_.colormap;
+    } else if (key == "scene") {
+      if (status_.scene_name != value) failure = "scene is " + status_.scene_name;
+    } else {
+      // a live setting: setting the expected value on a copy must change nothing
+      LiveSettings expected = status_.settings;
+      const std::string problem = set_live_parameter(expected, key, value);
+      if (!problem.empty()) failure = problem;
+      else if (!same_settings(expected, status_.settings)) failure = key + " differs";
+    }
+  } else {
+    failure = "cannot check '" + what + "'";
+  }
+  if (failure.empty()) log_.add("script: expectation '" + a.text + "' holds");
+  else script_failure("expectation '" + a.text + "' failed: " + failure);
+}
+
+// ---------------------------------------------------------------------------------------------
+// input: keys and mouse over the picture (not over panels)
+
+void GuiApp::handle_input(int fb_width, int fb_height) {
+  ImGuiIO& io = ImGui::GetIO();
+  using Kind = SimCommand::Kind;
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) send(SimCommand::make(Kind::kToggleRun, "key"));
+    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT, true)) send(SimCommand::make(Kind::kStep, "key"));
+    if (ImGui::IsKeyPressed(GLFW_KEY_BACKSPACE, false)) send(SimCommand::make(Kind::kReset, "key"));
+    if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) {
+      fit_pending_ = true;
+      follow_ = -1;
+      log_.add("fit view (key)");
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) pending_screenshot_ = default_screenshot_name();
+  }
+
+  // window coordinates to framebuffer pixels (they differ on high-density screens)
+  int win_w = 1, win_h = 1;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  const double sx = double(fb_width) / std::max(1, win_w), sy = double(fb_height) / std::max(1, win_h);
+  const double mx = io.MousePos.x * sx, my = io.MousePos.y * sy;
+  const Vec2 world = camera_.to_world(mx, my, fb_width, fb_height);
+
+  // a grab lasts until the left button is released, wherever the mouse goes
+  if (grabbing_) {
+    SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+      grabbing_ = false;
+      send(c);
+    } else if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) {
+      c.count = 0;
+      grab_spring_.target = world;
+      c.spring = grab_spring_;
+      send(c);
+    }
+  }
+  if (io.WantCaptureMouse) return;
+
+  if (io.MouseWheel != 0.0f) camera_.zoom_at(std::pow(1.15, io.MouseWheel), mx, my, fb_width, fb_height);
+  if (ImGui::IsMouseDown(ImGuiMouseButton_Right) && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
+    camera_.pan_pixels(io.MouseDelta.x * sx, io.MouseDelta.y * sy, fb_height);
+    follow_ = -1;
+  }
+  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && worker_.has_snapshot()) {
+    const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
+    if (std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance)) {
+      grabbing_ = true;
+      grab_spring_ = *spring;
+      SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
+      c.spring = spring;
+      c.count = 1;
+      send(c);
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// capture
+
+void GuiApp::capture_screenshot(const std::string& path, int fb_width, int fb_height) {
+  RgbaImage image;
+  image.resize(fb_width, fb_height);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadBuffer(GL_BACK);
+  glReadPixels(0, 0, fb_width, fb_height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+  flip_rows(image);
+  // the window's alpha channel is not part of the picture
+  for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+  try {
+    write_png(path, image);
+    log_.add("screenshot " + path + " (" + std::to_string(fb_width) + "x" + std::to_string(fb_height) +
+             ", t = " + std::to_string(worker_.snapshot().time) + ")");
+  } catch (const std::exception& e) {
+    log_.add(std::string("screenshot failed: ") + e.what());
+    if (options_.frames > 0) exit_code_ = kExitOther;
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// the frame loop
+
+int GuiApp::run() {
+  for (;;) {
+    glfwPollEvents();
+    if (glfwWindowShouldClose(window_)) break;
+    take_snapshot();
+    const bool advance = run_script();
+    int fb_width = 0, fb_height = 0;
+    glfwGetFramebufferSize(window_, &fb_width, &fb_height);
+    if (fb_width <= 0 || fb_height <= 0) {  // minimised: nothing to draw
+      glfwWaitEventsTimeout(0.05);
+      continue;
+    }
+    const Snapshot& snap = worker_.snapshot();
+
+    // the last frame of a --frames run is the screenshot
+    const bool last_frame = options_.frames > 0 && advance && frame_ + 1 >= options_.frames;
+    if (last_frame && !options_.screenshot.empty()) pending_screenshot_ = options_.screenshot;
+    const std::string screenshot = pending_screenshot_;
+    pending_screenshot_.clear();
+
+    // recorded frames first: they draw into their own framebuffer
+    pump_recording();
+
+    {
+      // ImGui's current context is process-wide (see render/renderer.h)
+      std::lock_guard<std::mutex> imgui_lock(imgui_context_mutex());
+      ImGui_ImplOpenGL3_NewFrame();
+      ImGui_ImplGlfw_NewFrame();
+      ImGui::NewFrame();
+      handle_input(fb_width, fb_height);
+
+      // camera: fit when asked (and once there is something to fit), follow a body
+      if (fit_pending_ && snap.geometry) {
+        camera_ = fit_camera_beside_panels(snap, fb_width, fb_height, kPanelWidth);
+        fit_pending_ = false;
+      }
+      if (follow_ > 0 && follow_ < static_cast<int>(snap.bodies.size())) {
+        camera_.center = Vec2(snap.bodies[follow_].x, snap.bodies[follow_].y);
+      }
+
+      // the picture; a drawing failure (say, a missing colour map) is shown, not fatal
+      try {
+        if (snap.geometry) renderer_->draw(snap, camera_, render_, fb_width, fb_height);
+      } catch (const std::exception& e) {
+        log_.add(std::string("drawing failed: ") + e.what() + "; back to the default colour map");
+        render_.colormap = RenderSettings{}.colormap;
+      }
+      // screenshots show the picture and its overlay, not the panels
+      if (screenshot.empty()) draw_panels(fb_width, fb_height);
+      if (render_.show_overlay && snap.geometry) renderer_->draw_overlay(snap, render_, fb_width, fb_height);
+      ImGui::Render();
+      ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    }
+    if (!screenshot.empty()) capture_screenshot(screenshot, fb_width, fb_height);
+    glfwSwapBuffers(window_);
+
+    if (advance) ++frame_;
+    if (quit_ || (options_.frames > 0 && frame_ >= options_.frames)) break;
+  }
+  stop_recording();
+  return exit_code_;
+}
+
+}  // namespace periflex

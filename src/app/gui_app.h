@@ -1,0 +1,114 @@
+// The visualiser's main-thread side: window, input, script, drawing and capture.
+// Internal to src/app/; run_gui (gui.h) is the public entry point.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/event_log.h"
+#include "app/gui.h"
+#include "app/gui_script.h"
+#include "app/plot_history.h"
+#include "app/sim_worker.h"
+#include "render/camera.h"
+#include "render/frame_writer.h"
+#include "render/renderer.h"
+
+struct GLFWwindow;
+
+namespace periflex {
+
+class GuiApp {
+ public:
+  GuiApp(const GuiOptions& options, std::vector<ScriptAction> script, EventLog& log, SimWorker& worker,
+         GLFWwindow* window, const std::string& resource_root);
+  ~GuiApp();
+  // Runs the frame loop until the window closes, the script quits or --frames are drawn.
+  // Returns the exit code of the visual part (0, or 1 for a failed expectation or capture).
+  int run();
+
+ private:
+  // one frame
+  void take_snapshot();
+  bool run_script();
+  bool script_blocked();
+  void execute(const ScriptAction& action);
+  void evaluate_expectation(const ScriptAction& action);
+  void handle_input(int fb_width, int fb_height);
+  void draw_panels(int fb_width, int fb_height);
+  void capture_screenshot(const std::string& path, int fb_width, int fb_height);
+  void send(SimCommand command);
+  void script_failure(const std::string& what);
+
+  // panels (gui_panels.cpp)
+  void panel_simulation();
+  void panel_parameters();
+  void panel_view();
+  void panel_plots();
+  void panel_export(int fb_width, int fb_height);
+  void panel_log();
+  void numerical_error_modal();
+
+  // recording (gui_record.cpp)
+  void start_recording(const std::string& path, double interval, double fps, int fb_width, int fb_height);
+  void stop_recording();
+  void pump_recording();
+  void write_recorded_frame(const Snapshot& frame, FrameWriter& writer);
+
+  std::string default_screenshot_name() const;
+  std::string resolve_scene_path(const std::string& path) const;
+  std::vector<std::string> list_scenes() const;
+
+  GuiOptions options_;
+  std::vector<ScriptAction> script_;
+  EventLog& log_;
+  SimWorker& worker_;
+  GLFWwindow* window_;
+  std::string resource_root_;
+  std::unique_ptr<Renderer> renderer_;
+
+  // what is shown
+  WorkerStatus status_;
+  RenderSettings render_;
+  Camera camera_;
+  bool fit_pending_ = true;
+  int follow_ = -1;                 // geometry body index, -1: none
+  PlotHistory history_;
+  long seen_generation_ = -1, seen_scene_generation_ = -1;
+  LiveSettings edit_;               // the live-parameter panel's copy
+  long edit_generation_ = -1;
+  int speed_choice_ = 0;
+  std::vector<std::string> scenes_;
+  int scene_choice_ = -1;
+  long shown_error_step_ = -2;      // the numerical failure last shown in the modal
+  long log_shown_ = 0;              // log lines the panel has scrolled to
+
+  // script and frame count
+  long frame_ = 0;
+  size_t next_action_ = 0;
+  std::optional<double> wait_time_;
+  std::optional<ScriptAction> pending_expect_;
+  double block_started_ = 0.0;
+  long sent_ = 0;
+  bool quit_ = false;
+  int exit_code_ = 0;
+
+  // mouse
+  bool grabbing_ = false;
+  MouseSpring grab_spring_;
+
+  // capture and recording
+  std::string pending_screenshot_;
+  char screenshot_path_[512] = "";
+  char record_path_[512] = "frames";
+  double record_interval_ = 0.0;
+  float record_fps_ = 30.0f;
+  std::unique_ptr<FrameWriter> writer_;
+  unsigned fbo_ = 0, color_rbo_ = 0;
+  int record_width_ = 0, record_height_ = 0;
+  std::string record_message_;
+};
+
+}  // namespace periflex

@@ -1,0 +1,305 @@
+// The panel column: simulation, live parameters, view, plots, export and log. Panels show only
+// what the scene has (no damage or fracture controls without particles).
+#include <imgui.h>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstdio>
+
+#include "app/gui_app.h"
+#include "app/view_fit.h"
+#include "render/frame_writer.h"
+
+namespace periflex {
+
+namespace {
+
+// real-time factors offered; 0 runs as fast as possible
+constexpr double kSpeeds[] = {1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 0.1, 0.25, 0.5, 1.0, 2.0, 5.0, 10.0, 0.0};
+constexpr int kSpeedCount = sizeof(kSpeeds) / sizeof(kSpeeds[0]);
+
+std::string speed_label(double speed) {
+  if (speed <= 0.0) return "as fast as possible";
+  char text[32];
+  std::snprintf(text, sizeof text, "%gx", speed);
+  return text;
+}
+
+// a red line of text
+void error_text(const std::string& text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+  ImGui::TextWrapped("%s", text.c_str());
+  ImGui::PopStyleColor();
+}
+
+void warning_text(const std::string& text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.8f, 0.3f, 1.0f));
+  ImGui::TextWrapped("%s", text.c_str());
+  ImGui::PopStyleColor();
+}
+
+// a number typed and confirmed with Enter (no half-typed values reach the solver)
+bool input_number(const char* label, double& value, const char* format = "%.6g") {
+  return ImGui::InputDouble(label, &value, 0.0, 0.0, format, ImGuiInputTextFlags_EnterReturnsTrue);
+}
+
+bool has_particles(const Snapshot& s) { return s.geometry && s.geometry->has_particles(); }
+
+}  // namespace
+
+void GuiApp::draw_panels(int fb_width, int fb_height) {
+  ImGuiIO& io = ImGui::GetIO();
+  const float scale = io.DisplayFramebufferScale.x > 0.0f ? io.DisplayFramebufferScale.x : 1.0f;
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth / scale, fb_height / scale));
+  ImGui::Begin("periflex", nullptr,
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+  ImGui::PushItemWidth(150.0f);
+  panel_simulation();
+  if (ImGui::CollapsingHeader("Live parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters();
+  if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) panel_view();
+  if (ImGui::CollapsingHeader("Plots")) panel_plots();
+  if (ImGui::CollapsingHeader("Export")) panel_export(fb_width, fb_height);
+  if (ImGui::CollapsingHeader("Log", ImGuiTreeNodeFlags_DefaultOpen)) panel_log();
+  ImGui::PopItemWidth();
+  ImGui::End();
+  numerical_error_modal();
+}
+
+void GuiApp::panel_simulation() {
+  using Kind = SimCommand::Kind;
+  ImGui::Text("%s", status_.scene_name.c_str());
+  ImGui::Text("t = %.6g s of %.6g   step %ld", status_.time, status_.end_time, status_.step);
+  if (ImGui::Button(status_.running ? "Pause" : "Run", ImVec2(60, 0))) send(SimCommand::make(Kind::kToggleRun));
+  ImGui::SameLine();
+  if (ImGui::Button("Step")) send(SimCommand::make(Kind::kStep));
+  ImGui::SameLine();
+  if (ImGui::Button("Reset")) send(SimCommand::make(Kind::kReset));
+  ImGui::SameLine();
+  if (ImGui::Button("Reload")) send(SimCommand::make(Kind::kReload));
+
+  // pace: the nearest offered factor is shown as chosen
+  int current = 0;
+  for (int i = 0; i < kSpeedCount; ++i) {
+    const bool max_now = status_.speed <= 0.0, max_i = kSpeeds[i] <= 0.0;
+    if (max_now && max_i) current = i;
+    if (!max_now && !max_i &&
+        std::fabs(std::log(kSpeeds[i] / status_.speed)) < std::fabs(std::log(kSpeeds[current] / status_.speed))) {
+      current = i;
+    }
+  }
+  if (ImGui::BeginCombo("speed", speed_label(status_.speed).c_str())) {
+    for (int i = 0; i < kSpeedCount; ++i) {
+      if (ImGui::Selectable(speed_label(kSpeeds[i]).c_str(), i == current)) {
+        SimCommand c = SimCommand::make(Kind::kSetSpeed);
+        c.number = kSpeeds[i];
+        send(c);
+      }
+    }
+    ImGui::EndCombo();
+  }
+  ImGui::Text("%.0f steps/s, %.3g sim s per wall s", status_.steps_per_second, status_.sim_seconds_per_second);
+
+  // scenes shipped in scenes/
+  if (!scenes_.empty()) {
+    const char* preview = scene_choice_ >= 0 ? scenes_[scene_choice_].c_str() : "(other file)";
+    if (ImGui::BeginCombo("##scene", preview)) {
+      for (int i = 0; i < static_cast<int>(scenes_.size()); ++i) {
+        if (ImGui::Selectable(scenes_[i].c_str(), i == scene_choice_)) scene_choice_ = i;
+      }
+      ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Open") && scene_choice_ >= 0) {
+      SimCommand c = SimCommand::make(Kind::kLoadScene);
+      c.text = resolve_scene_path(scenes_[scene_choice_]);
+      send(c);
+    }
+  }
+  if (!status_.load_error.empty()) error_text("Load failed (old scene kept): " + status_.load_error);
+  if (status_.numerical_error) error_text("Stopped: " + status_.numerical_message);
+}
+
+void GuiApp::panel_parameters() {
+  // the panel edits a copy of the solver's settings; every confirmed change is sent whole
+  LiveSettings edit = status_.settings;
+  bool changed = false;
+  const bool particles = has_particles(worker_.snapshot());
+
+  const std::vector<std::string> integrators = integrator_names();
+  if (ImGui::BeginCombo("integrator", edit.integrator.c_str())) {
+    for (const std::string& name : integrators) {
+      if (ImGui::Selectable(name.c_str(), name == edit.integrator)) {
+        edit.integrator = name;
+        changed = true;
+      }
+    }
+    ImGui::EndCombo();
+  }
+  changed |= input_number("dt [s]", edit.dt);
+  const double critical = status_.info.critical_time_step;
+  if (critical > 0.0) {
+    ImGui::Text("critical dt %.4g s", critical);
+    if (edit.dt > critical) warning_text("dt exceeds the critical step: explicit peridynamics will diverge");
+  }
+
+  static const char* methods[] = {"none", "baumgarte", "projection"};
+  int method = static_cast<int>(edit.correction.method);
+  if (ImGui::Combo("correction", &method, methods, 3)) {
+    edit.correction.method = static_cast<CorrectionDef::Method>(method);
+    changed = true;
+  }
+  if (edit.correction.method == CorrectionDef::Method::kBaumgarte) {
+    changed |= input_number("alpha", edit.correction.alpha);
+    changed |= input_number("beta", edit.correction.beta);
+  } else if (edit.correction.method == CorrectionDef::Method::kProjection) {
+    changed |= input_number("tolerance", edit.correction.tolerance, "%.3g");
+  }
+
+  if (particles) {
+    changed |= input_number("bond damping [Pa s]", edit.bond_damping);
+    changed |= input_number("global damping [1/s]", edit.global_damping);
+    changed |= ImGui::Checkbox("fracture", &edit.fracture);
+  }
+  if (changed) {
+    SimCommand c = SimCommand::make(SimCommand::Kind::kApplySettings);
+    c.settings = edit;
+    send(c);
+  }
+  for (const std::string& w : status_.info.warnings) warning_text(w);
+}
+
+void GuiApp::panel_view() {
+  const Snapshot& snap = worker_.snapshot();
+  const bool particles = has_particles(snap);
+  if (particles) {
+    static const char* fields[] = {"damage", "displacement", "speed", "strain"};
+    int field = static_cast<int>(render_.field);
+    if (ImGui::Combo("colour field", &field, fields, 4)) render_.field = static_cast<ColorField>(field);
+    ImGui::Checkbox("auto range", &render_.auto_range);
+    if (!render_.auto_range) {
+      ImGui::InputFloat("min", &render_.range_min, 0.0f, 0.0f, "%.4g");
+      ImGui::InputFloat("max", &render_.range_max, 0.0f, 0.0f, "%.4g");
+    } else {
+      ImGui::Text("range %.4g .. %.4g", renderer_->last_range_min(), renderer_->last_range_max());
+    }
+    if (ImGui::BeginCombo("colour map", render_.colormap.c_str())) {
+      for (const std::string& name : renderer_->colormap_names()) {
+        if (ImGui::Selectable(name.c_str(), name == render_.colormap)) render_.colormap = name;
+      }
+      ImGui::EndCombo();
+    }
+    ImGui::SliderFloat("particle size", &render_.particle_scale, 0.2f, 2.0f, "%.2f");
+    ImGui::Checkbox("bonds", &render_.show_bonds);
+    ImGui::SameLine();
+  }
+  ImGui::Checkbox("bodies", &render_.show_bodies);
+  ImGui::SameLine();
+  ImGui::Checkbox("markers", &render_.show_markers);
+  ImGui::Checkbox("springs", &render_.show_springs);
+  ImGui::SameLine();
+  ImGui::Checkbox("probes", &render_.show_probes);
+  ImGui::SameLine();
+  ImGui::Checkbox("trails", &render_.show_trails);
+  ImGui::Checkbox("overlay", &render_.show_overlay);
+
+  // follow one rigid body, or none
+  if (snap.geometry && snap.geometry->bodies.size() > 1) {
+    const auto& bodies = snap.geometry->bodies;
+    const char* preview = follow_ > 0 && follow_ < static_cast<int>(bodies.size()) ? bodies[follow_].name.c_str()
+                                                                                   : "(none)";
+    if (ImGui::BeginCombo("follow", preview)) {
+      if (ImGui::Selectable("(none)", follow_ <= 0)) follow_ = -1;
+      for (int b = 1; b < static_cast<int>(bodies.size()); ++b) {
+        if (ImGui::Selectable(bodies[b].name.c_str(), b == follow_)) follow_ = b;
+      }
+      ImGui::EndCombo();
+    }
+  }
+  if (ImGui::Button("Fit view (F)")) {
+    fit_pending_ = true;
+    follow_ = -1;
+  }
+}
+
+void GuiApp::panel_plots() {
+  const bool particles = has_particles(worker_.snapshot());
+  const bool constrained = status_.info.constraint_equations > 0;
+  ImGui::Text("t = %.4g .. %.4g s, %zu points", history_.first_time(), history_.last_time(), history_.size());
+  for (int k = 0; k < PlotHistory::kSeriesCount; ++k) {
+    if (!particles && (k == PlotHistory::kBrokenBonds || k == PlotHistory::kMaxDamage)) continue;
+    if (!constrained && k == PlotHistory::kViolation) continue;
+    const std::vector<float>& v = history_.values(k);
+    char overlay[64];
+    std::snprintf(overlay, sizeof overlay, "%.4g", v.empty() ? 0.0 : double(v.back()));
+    ImGui::Text("%s", PlotHistory::name(k));
+    ImGui::PlotLines(("##plot" + std::to_string(k)).c_str(), v.data(), static_cast<int>(v.size()), 0, overlay,
+                     FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 50.0f));
+  }
+}
+
+void GuiApp::panel_export(int fb_width, int fb_height) {
+  ImGui::InputText("##shot", screenshot_path_, sizeof screenshot_path_);
+  ImGui::SameLine();
+  if (ImGui::Button("Screenshot (S)")) {
+    pending_screenshot_ = screenshot_path_[0] ? std::string(screenshot_path_) : default_screenshot_name();
+  }
+
+  ImGui::Separator();
+  ImGui::TextWrapped("Record: a folder for a PNG sequence, or a .mp4 file (needs ffmpeg)");
+  ImGui::InputText("##record", record_path_, sizeof record_path_);
+  if (record_interval_ <= 0.0) record_interval_ = status_.end_time > 0.0 ? status_.end_time / 200.0 : 0.01;
+  input_number("every [sim s]", record_interval_);
+  ImGui::InputFloat("movie fps", &record_fps_, 0.0f, 0.0f, "%.0f");
+  if (!writer_) {
+    if (ImGui::Button("Start recording")) {
+      start_recording(record_path_, record_interval_, record_fps_, fb_width, fb_height);
+    }
+  } else {
+    ImGui::Text("%ld frames written", writer_->frames_written());
+    if (ImGui::Button("Stop recording")) stop_recording();
+  }
+  if (!record_message_.empty()) ImGui::TextWrapped("%s", record_message_.c_str());
+}
+
+void GuiApp::panel_log() {
+  ImGui::BeginChild("log", ImVec2(0, 160), true, ImGuiWindowFlags_HorizontalScrollbar);
+  for (const std::string& line : log_.lines()) ImGui::TextUnformatted(line.c_str());
+  // follow new lines
+  const long total = log_.total();
+  if (total != log_shown_) {
+    ImGui::SetScrollHereY(1.0f);
+    log_shown_ = total;
+  }
+  ImGui::EndChild();
+}
+
+void GuiApp::numerical_error_modal() {
+  // open once per failure; the run stays paused until reset, reload or a settings change
+  if (status_.numerical_error && status_.numerical_error->step != shown_error_step_) {
+    shown_error_step_ = status_.numerical_error->step;
+    ImGui::OpenPopup("Numerical failure");
+  }
+  if (ImGui::BeginPopupModal("Numerical failure", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    if (status_.numerical_error) {
+      const NumericalDiagnostic& d = *status_.numerical_error;
+      ImGui::Text("quantity: %s", d.quantity.c_str());
+      ImGui::Text("step %ld, t = %.9g s", d.step, d.time);
+      ImGui::PushTextWrapPos(520.0f);
+      ImGui::TextWrapped("likely cause: %s", d.cause.c_str());
+      ImGui::TextWrapped("remedy: %s", d.remedy.c_str());
+      ImGui::PopTextWrapPos();
+    }
+    ImGui::TextUnformatted("The simulation is paused.");
+    if (ImGui::Button("Reset")) {
+      send(SimCommand::make(SimCommand::Kind::kReset));
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Close")) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+}
+
+}  // namespace periflex

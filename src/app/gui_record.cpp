@@ -1,0 +1,127 @@
+// Recording from the window: the simulation thread publishes snapshots at a fixed simulated-time
+// interval; the main thread draws each into an off-screen framebuffer of the window's size and
+// hands the pixels to a frame writer (PNG sequence or MP4 through ffmpeg).
+#include <algorithm>
+#include <exception>
+
+#include "app/gui_app.h"
+#include "render/gl.h"
+#include "render/image.h"
+
+namespace periflex {
+
+namespace {
+
+// recorded frames drawn per window frame, so recording never stalls the interface for long
+constexpr int kRecordedPerFrame = 4;
+
+bool ends_with(const std::string& s, const std::string& tail) {
+  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+}  // namespace
+
+void GuiApp::start_recording(const std::string& path, double interval, double fps, int fb_width,
+                             int fb_height) {
+  if (writer_) stop_recording();
+  if (path.empty() || interval <= 0.0) {
+    record_message_ = "give a folder or .mp4 file and a positive interval";
+    return;
+  }
+  // even sizes: movies need them
+  record_width_ = std::max(2, fb_width & ~1);
+  record_height_ = std::max(2, fb_height & ~1);
+  try {
+    if (ends_with(path, ".mp4")) {
+      if (find_ffmpeg().empty()) {
+        record_message_ = "ffmpeg is not installed (not on PATH): install it, or record a PNG sequence "
+                          "by giving a folder name";
+        log_.add("recording: " + record_message_);
+        return;
+      }
+      writer_ = std::make_unique<Mp4Writer>(path, record_width_, record_height_, std::max(1.0, fps));
+    } else {
+      writer_ = std::make_unique<PngSequenceWriter>(path);
+    }
+  } catch (const std::exception& e) {
+    record_message_ = e.what();
+    log_.add("recording could not start: " + record_message_);
+    writer_.reset();
+    return;
+  }
+
+  // the off-screen target the recorded frames are drawn into
+  glGenFramebuffers(1, &fbo_);
+  glGenRenderbuffers(1, &color_rbo_);
+  glBindRenderbuffer(GL_RENDERBUFFER, color_rbo_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, record_width_, record_height_);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rbo_);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) {
+    record_message_ = "the off-screen framebuffer for recording is incomplete";
+    log_.add("recording could not start: " + record_message_);
+    writer_.reset();
+    return;
+  }
+  record_message_ = "recording to " + path;
+  SimCommand c = SimCommand::make(SimCommand::Kind::kRecord);
+  c.number = interval;
+  send(c);
+}
+
+void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
+  // draw off-screen, read back (rows bottom-up in GL), hand to the writer
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  renderer_->draw(frame, camera_, render_, record_width_, record_height_);
+  RgbaImage image;
+  image.resize(record_width_, record_height_);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, record_width_, record_height_, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  flip_rows(image);
+  for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
+  writer.write(image);
+}
+
+void GuiApp::pump_recording() {
+  if (!writer_) return;
+  Snapshot frame;
+  for (int n = 0; n < kRecordedPerFrame && worker_.take_recorded(frame); ++n) {
+    try {
+      write_recorded_frame(frame, *writer_);
+    } catch (const std::exception& e) {
+      // a full disk or a dead ffmpeg ends the recording with the reason shown
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      record_message_ = std::string("recording stopped: ") + e.what();
+      log_.add(record_message_);
+      stop_recording();
+      return;
+    }
+  }
+}
+
+void GuiApp::stop_recording() {
+  if (!writer_) return;
+  SimCommand c = SimCommand::make(SimCommand::Kind::kRecord);
+  c.number = 0.0;
+  send(c);
+  // frames already published are still written
+  std::unique_ptr<FrameWriter> writer = std::move(writer_);
+  Snapshot frame;
+  try {
+    while (worker_.take_recorded(frame)) write_recorded_frame(frame, *writer);
+    writer->close();
+    record_message_ = "recorded " + std::to_string(writer->frames_written()) + " frames";
+  } catch (const std::exception& e) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    record_message_ = std::string("recording ended with an error: ") + e.what();
+  }
+  log_.add(record_message_);
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteRenderbuffers(1, &color_rbo_);
+  fbo_ = color_rbo_ = 0;
+}
+
+}  // namespace periflex

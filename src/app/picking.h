@@ -1,0 +1,18 @@
+// What is under the mouse: a rigid body (by its shapes) or a particle, and the mouse spring
+// that grabs it. No GL.
+#pragma once
+
+#include <optional>
+
+#include "solve/simulation.h"
+#include "solve/snapshot.h"
+
+namespace periflex {
+
+// The spring that grabs what lies at `world` in `snapshot`: a rigid body whose shape contains
+// the point (its body-fixed grab point), else the nearest particle within one grid spacing
+// (or within `tolerance`, when larger). Ground and virtual bodies are not grabbed.
+// Empty when nothing is there.
+std::optional<MouseSpring> pick(const Snapshot& snapshot, const Vec2& world, double tolerance);
+
+}  // namespace periflex

@@ -1,0 +1,76 @@
+// Scripts of timed GUI actions: parsing, ordering by frame, and clear errors for bad actions.
+#include "app/gui_script.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace periflex {
+namespace {
+
+TEST(GuiScript, ParsesTheDocumentedExample) {
+  const auto actions =
+      parse_script("pause@5; step@6; set bond_damping=0.1@7; resume@8; colormap viridis@9");
+  ASSERT_EQ(actions.size(), 5u);
+  EXPECT_EQ(actions[0].verb, "pause");
+  EXPECT_EQ(actions[0].frame, 5);
+  EXPECT_EQ(actions[1].verb, "step");
+  EXPECT_TRUE(actions[1].args.empty());
+  EXPECT_EQ(actions[2].verb, "set");
+  ASSERT_EQ(actions[2].args.size(), 1u);
+  EXPECT_EQ(actions[2].args[0], "bond_damping=0.1");
+  EXPECT_EQ(actions[3].verb, "resume");
+  EXPECT_EQ(actions[4].args[0], "viridis");
+  EXPECT_EQ(actions[4].frame, 9);
+}
+
+TEST(GuiScript, SortsByFrameKeepingWrittenOrderWithinAFrame) {
+  const auto actions = parse_script("quit@9\nspeed max@0 # as fast as possible\nrun@0; step 3@2; pause@0");
+  ASSERT_EQ(actions.size(), 5u);
+  EXPECT_EQ(actions[0].verb, "speed");
+  EXPECT_EQ(actions[1].verb, "run");
+  EXPECT_EQ(actions[2].verb, "pause");
+  EXPECT_EQ(actions[3].verb, "step");
+  EXPECT_EQ(actions[3].args[0], "3");
+  EXPECT_EQ(actions[4].verb, "quit");
+}
+
+TEST(GuiScript, ReadsAScriptFile) {
+  const std::string path = ::testing::TempDir() + "gui_script_test.txt";
+  {
+    std::ofstream out(path);
+    out << "# a comment line\nwait 1e-4@1\nexpect paused@2\n";
+  }
+  const auto actions = parse_script(path);
+  std::remove(path.c_str());
+  ASSERT_EQ(actions.size(), 2u);
+  EXPECT_EQ(actions[0].verb, "wait");
+  EXPECT_EQ(actions[1].args[0], "paused");
+}
+
+TEST(GuiScript, RejectsBadActionsNamingThem) {
+  const char* bad[] = {"jump@3",           // unknown verb
+                       "pause",            // no frame (and no such file)
+                       "pause@x",          // frame not a number
+                       "step 0@1",         // step count below one
+                       "set bond_damping@1",  // set without =
+                       "speed fast@1",     // not a number
+                       "field colour@1",   // unknown field
+                       "show bonds maybe@1",  // not on/off
+                       "range 1@2",        // range needs auto or two numbers
+                       "pause now@1"};     // pause takes no argument
+  for (const char* script : bad) {
+    try {
+      parse_script(script);
+      ADD_FAILURE() << "accepted: " << script;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().key, "--script") << script;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace periflex

@@ -13,6 +13,8 @@
 namespace periflex {
 namespace {
 
+// The scenes offered to users: scenes/*.toml. Subfolders (scenes/stability/, ...) hold case files
+// of other suites, some of them invalid on purpose, and are not walked.
 std::vector<std::string> shipped_scenes() {
   std::vector<std::string> paths;
   for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(PERIFLEX_SOURCE_ROOT) / "scenes"))

@@ -210,7 +210,8 @@ class SceneBuilder {
       const double value = std::string(key) == "mass" ? body.mass : body.inertia;
       if (value < 0.0) in.fail(key, std::string(key) + " must not be negative, found " + format_number(value));
       if (value == 0.0 && !body.is_virtual)
-        in.fail(key, std::string(key) + " must be positive (only a virtual body may be massless), found 0");
+        in.fail(key, std::string(key) + " must be positive, found 0: the motion of a body without " + key +
+                " is undetermined (only a virtual body, held by joints or attachments, may be massless)");
     }
 
     body.position = in.vec2("position", Vec2::Zero());

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -117,6 +119,33 @@ TEST(ShippedScenes, FourBarIsGrashofCrankRocker) {
   std::sort(links.begin(), links.end());
   EXPECT_LE(links[0] + links[3], links[1] + links[2]);
   EXPECT_DOUBLE_EQ(crank, links[0]);
+}
+
+// The example closing docs/scenes.md must stay a valid scene, and the documented override
+// examples must apply to the shipped scene they name.
+TEST(SceneDocs, ExampleAndOverridesInTheDocumentationWork) {
+  std::ifstream in(std::string(PERIFLEX_SOURCE_ROOT) + "/docs/scenes.md");
+  ASSERT_TRUE(in.good());
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  const size_t start = doc.rfind("```toml\n");
+  ASSERT_NE(start, std::string::npos);
+  const size_t end = doc.find("```", start + 8);
+  ASSERT_NE(end, std::string::npos);
+  const SceneDef scene = parse_scene(doc.substr(start + 8, end - start - 8), "docs/scenes.md");
+  EXPECT_EQ(scene.name, "bar_pendulum");
+  ASSERT_EQ(scene.joints.size(), 1u);
+  EXPECT_EQ(scene.joints[0].body_j, "bar");
+
+  const SceneDef four_bar = load_scene(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/four_bar.toml",
+                                       {"solver.dt=1e-4", "scene.gravity=[0,-1.62]", "body.crank.mass=2",
+                                        "driver.motor.function.rate=10", "solver.integrator=verlet"});
+  EXPECT_DOUBLE_EQ(four_bar.solver.dt, 1e-4);
+  EXPECT_DOUBLE_EQ(four_bar.gravity.y(), -1.62);
+  EXPECT_DOUBLE_EQ(four_bar.bodies[0].mass, 2.0);
+  EXPECT_DOUBLE_EQ(four_bar.drivers[0].function.rate, 10.0);
+  EXPECT_EQ(four_bar.solver.integrator, "verlet");
 }
 
 }  // namespace

@@ -35,7 +35,8 @@ int run_gui(const GuiOptions& options) {
   std::unique_ptr<SimWorker> worker;
   try {
     if (!options.script.empty()) script = parse_script(options.script);
-    worker = std::make_unique<SimWorker>(simulation_model_factory(), options.scene_path, options.overrides, log);
+    worker = std::make_unique<SimWorker>(simulation_model_factory(), options.scene_path, options.overrides,
+                                         log);
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
@@ -82,10 +83,10 @@ int run_gui(const GuiOptions& options) {
   int code = kExitOk;
   try {
     GuiApp app(options, std::move(script), log, *worker, window, find_resource_root());
-    // a scene whose whole run is short in simulated time (a fracture in microseconds) starts
-    // in slow motion, so that it plays over about ten seconds
+    // a scene whose whole run is under a second of simulated time (a fracture in microseconds)
+    // starts in slow motion, so that it plays over about ten seconds; longer ones at 1x
     const double end = worker->status().end_time;
-    const double speed = end > 0.0 ? std::min(1.0, end / 10.0) : 1.0;
+    const double speed = end > 0.0 && end < 1.0 ? end / 10.0 : 1.0;
     worker->start(true, speed);
     code = app.run();
   } catch (const std::exception& e) {

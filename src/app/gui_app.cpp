@@ -227,6 +227,9 @@ void GuiApp::execute(const ScriptAction& a) {
     }
   } else if (verb == "screenshot") {
     pending_screenshot_ = a.args[0];
+  } else if (verb == "screenshot_ui") {
+    pending_screenshot_ = a.args[0];
+    screenshot_with_panels_ = true;
   } else if (verb == "record") {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window_, &w, &h);
@@ -355,6 +358,15 @@ void GuiApp::capture_screenshot(const std::string& path, int fb_width, int fb_he
 // ---------------------------------------------------------------------------------------------
 // the frame loop
 
+void GuiApp::draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, int fb_height) {
+  // the overlay is laid out from the window's left edge; move what it adds beside the panels
+  ImDrawList* list = ImGui::GetForegroundDrawList();
+  const int first = list->VtxBuffer.Size;
+  renderer_->draw_overlay(snap, render_, fb_width - inset, fb_height);
+  const float shift = inset / std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
+  for (int i = first; i < list->VtxBuffer.Size; ++i) list->VtxBuffer[i].pos.x += shift;
+}
+
 int GuiApp::run() {
   for (;;) {
     glfwPollEvents();
@@ -373,7 +385,9 @@ int GuiApp::run() {
     const bool last_frame = options_.frames > 0 && advance && frame_ + 1 >= options_.frames;
     if (last_frame && !options_.screenshot.empty()) pending_screenshot_ = options_.screenshot;
     const std::string screenshot = pending_screenshot_;
+    const bool with_panels = screenshot_with_panels_;
     pending_screenshot_.clear();
+    screenshot_with_panels_ = false;
 
     // recorded frames first: they draw into their own framebuffer
     pump_recording();
@@ -403,8 +417,11 @@ int GuiApp::run() {
         render_.colormap = RenderSettings{}.colormap;
       }
       // screenshots show the picture and its overlay, not the panels
-      if (screenshot.empty()) draw_panels(fb_width, fb_height);
-      if (render_.show_overlay && snap.geometry) renderer_->draw_overlay(snap, render_, fb_width, fb_height);
+      const bool panels = screenshot.empty() || with_panels;
+      if (panels) draw_panels(fb_width, fb_height);
+      if (render_.show_overlay && snap.geometry) {
+        draw_overlay_beside(snap, panels ? kPanelWidth : 0, fb_width, fb_height);
+      }
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     }

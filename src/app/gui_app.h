@@ -38,6 +38,7 @@ class GuiApp {
   void evaluate_expectation(const ScriptAction& action);
   void handle_input(int fb_width, int fb_height);
   void draw_panels(int fb_width, int fb_height);
+  void draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, int fb_height);
   void capture_screenshot(const std::string& path, int fb_width, int fb_height);
   void send(SimCommand command);
   void script_failure(const std::string& what);
@@ -101,6 +102,7 @@ class GuiApp {
 
   // capture and recording
   std::string pending_screenshot_;
+  bool screenshot_with_panels_ = false;
   char screenshot_path_[512] = "";
   char record_path_[512] = "frames";
   double record_interval_ = 0.0;

@@ -71,7 +71,9 @@ void GuiApp::panel_simulation() {
   using Kind = SimCommand::Kind;
   ImGui::Text("%s", status_.scene_name.c_str());
   ImGui::Text("t = %.6g s of %.6g   step %ld", status_.time, status_.end_time, status_.step);
-  if (ImGui::Button(status_.running ? "Pause" : "Run", ImVec2(60, 0))) send(SimCommand::make(Kind::kToggleRun));
+  if (ImGui::Button(status_.running ? "Pause" : "Run", ImVec2(60, 0))) {
+    send(SimCommand::make(Kind::kToggleRun));
+  }
   ImGui::SameLine();
   if (ImGui::Button("Step")) send(SimCommand::make(Kind::kStep));
   ImGui::SameLine();
@@ -84,8 +86,8 @@ void GuiApp::panel_simulation() {
   for (int i = 0; i < kSpeedCount; ++i) {
     const bool max_now = status_.speed <= 0.0, max_i = kSpeeds[i] <= 0.0;
     if (max_now && max_i) current = i;
-    if (!max_now && !max_i &&
-        std::fabs(std::log(kSpeeds[i] / status_.speed)) < std::fabs(std::log(kSpeeds[current] / status_.speed))) {
+    const auto distance = [&](int k) { return std::fabs(std::log(kSpeeds[k] / status_.speed)); };
+    if (!max_now && !max_i && (kSpeeds[current] <= 0.0 || distance(i) < distance(current))) {
       current = i;
     }
   }
@@ -99,7 +101,8 @@ void GuiApp::panel_simulation() {
     }
     ImGui::EndCombo();
   }
-  ImGui::Text("%.0f steps/s, %.3g sim s per wall s", status_.steps_per_second, status_.sim_seconds_per_second);
+  ImGui::Text("%.0f steps/s, %.3g sim s per wall s", status_.steps_per_second,
+              status_.sim_seconds_per_second);
 
   // scenes shipped in scenes/
   if (!scenes_.empty()) {
@@ -207,8 +210,8 @@ void GuiApp::panel_view() {
   // follow one rigid body, or none
   if (snap.geometry && snap.geometry->bodies.size() > 1) {
     const auto& bodies = snap.geometry->bodies;
-    const char* preview = follow_ > 0 && follow_ < static_cast<int>(bodies.size()) ? bodies[follow_].name.c_str()
-                                                                                   : "(none)";
+    const bool following = follow_ > 0 && follow_ < static_cast<int>(bodies.size());
+    const char* preview = following ? bodies[follow_].name.c_str() : "(none)";
     if (ImGui::BeginCombo("follow", preview)) {
       if (ImGui::Selectable("(none)", follow_ <= 0)) follow_ = -1;
       for (int b = 1; b < static_cast<int>(bodies.size()); ++b) {

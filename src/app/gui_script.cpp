@@ -36,7 +36,7 @@ Arity arity(const std::string& verb) {
   static const std::set<std::string> none = {"run", "resume", "pause", "reset", "reload", "fit",
                                              "stop_record", "quit"};
   static const std::set<std::string> one = {"scene", "set", "speed", "colormap", "field", "follow",
-                                            "screenshot", "wait", "expect"};
+                                            "screenshot", "screenshot_ui", "wait", "expect"};
   if (none.count(verb)) return {0, 0};
   if (one.count(verb)) return {1, 1};
   if (verb == "step") return {0, 1};

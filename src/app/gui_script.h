@@ -8,8 +8,8 @@
 //   run | resume, pause, step [N], reset, reload, scene PATH, set KEY=VALUE, speed X|max,
 //   colormap NAME, field damage|displacement|speed|strain, range auto|MIN MAX,
 //   show bodies|markers|springs|bonds|probes|trails|overlay on|off, fit, follow BODY|none,
-//   screenshot FILE, record PATH INTERVAL, stop_record, wait T, expect running|paused,
-//   expect KEY=VALUE, quit
+//   screenshot FILE, screenshot_ui FILE (with the panels), record PATH INTERVAL, stop_record,
+//   wait T, expect running|paused, expect KEY=VALUE, quit
 // `wait T` holds the frame count until the simulated time reaches T (or the run stops);
 // `expect` first waits until the simulation thread has applied every request sent so far,
 // then fails the run (exit code 1) when the state differs.

@@ -30,7 +30,7 @@ std::optional<MouseSpring> pick(const Snapshot& snapshot, const Vec2& world, dou
   double best_d2 = 0.0;
   for (const SceneGeometry::FlexBody& fb : g.flex_bodies) {
     const double reach = std::max(fb.grid_spacing, tolerance);
-    const int end = std::min<int>(fb.first_particle + fb.particle_count, static_cast<int>(snapshot.px.size()));
+    const int end = std::min<int>(fb.first_particle + fb.particle_count, int(snapshot.px.size()));
     for (int i = fb.first_particle; i < end; ++i) {
       const double dx = snapshot.px[i] - world.x(), dy = snapshot.py[i] - world.y();
       const double d2 = dx * dx + dy * dy;

@@ -68,7 +68,9 @@ class FakeModel final : public SteppedModel {
   void apply(const LiveSettings& s) override {
     if (in_step_) ++log_.applied_during_step;
     log_.apply_thread = std::this_thread::get_id();
-    if (log_.step_thread != std::thread::id() && log_.apply_thread != log_.step_thread) log_.threads_differ = true;
+    if (log_.step_thread != std::thread::id() && log_.apply_thread != log_.step_thread) {
+      log_.threads_differ = true;
+    }
     settings_ = s;
     log_.events.push_back("apply " + std::to_string(static_cast<long>(s.bond_damping)));
   }

@@ -1,0 +1,152 @@
+// Checks a screenshot written by `periflex gui --screenshot`, for the GUI smoke tests:
+//
+//   gui_png_check IMAGE                      not blank: several distinct colours, and a good
+//                                            share of pixels that are not the background
+//   gui_png_check IMAGE --crack SCENE        also: damage-coloured pixels in the ligament above
+//                                            the scene's first notch (the crack has grown)
+//   gui_png_check IMAGE --no-crack SCENE     the opposite, for a picture taken before the crack
+//                                            grows (proves the crack check can fail)
+//
+// The notch is found where the GUI draws it: the scene is built, its first snapshot framed with
+// the GUI's own fit_camera_beside_panels for the image's size. Exit code 0 pass, 1 fail, 2 usage.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <set>
+#include <string>
+#include <utility>
+
+#include "app/view_fit.h"
+#include "core/resources.h"
+#include "render/image.h"
+#include "render/renderer.h"
+#include "scene/scene_loader.h"
+#include "solve/simulation.h"
+
+namespace {
+
+using namespace periflex;
+
+// Share of non-background pixels a drawn scene has at least (the bodies of the smallest shipped
+// scene cover several percent of the window), and distinct colours (shading, markers, overlay).
+constexpr double kMinForeground = 0.005;
+constexpr size_t kMinColours = 8;
+// A pixel is "damage-coloured" when the nearest colour-map entry lies within this RGB distance
+// and sits at or above this point of the map; undamaged particles sit at 0, anti-aliased edges
+// blend towards the dark background, so neither reaches it.
+constexpr double kColourMatch = 30.0;
+constexpr double kDamagedFrom = 0.4;
+// Pixels needed to call a region damaged: a few broken-off particle discs.
+constexpr long kMinDamagedPixels = 20;
+
+int usage() {
+  std::fprintf(stderr, "usage: gui_png_check IMAGE [--crack SCENE | --no-crack SCENE]\n");
+  return 2;
+}
+
+bool check_not_blank(const RgbaImage& image) {
+  // background: the default renderer background colour
+  const RenderSettings defaults;
+  int bg[3];
+  for (int c = 0; c < 3; ++c) bg[c] = int(std::lround(defaults.background[c] * 255));
+  std::set<uint32_t> colours;
+  long foreground = 0;
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const uint8_t* p = image.at(x, y);
+      colours.insert(uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2]);
+      if (std::abs(p[0] - bg[0]) + std::abs(p[1] - bg[1]) + std::abs(p[2] - bg[2]) > 12) ++foreground;
+    }
+  }
+  const double share = double(foreground) / (double(image.width) * image.height);
+  std::printf("%zu distinct colours, %.2f%% non-background pixels\n", colours.size(), 100.0 * share);
+  bool ok = true;
+  if (colours.size() < kMinColours) {
+    std::printf("FAIL: fewer than %zu colours: the picture is blank\n", kMinColours);
+    ok = false;
+  }
+  if (share < kMinForeground) {
+    std::printf("FAIL: below %.1f%% non-background pixels: nothing drawn\n", 100.0 * kMinForeground);
+    ok = false;
+  }
+  return ok;
+}
+
+// Damage-coloured pixels in a box of the ligament: from 4 mm (beyond one horizon of the 1 mm grid
+// the shipped notched plate uses, so the notch's own cut bonds do not count) to 10 mm above the
+// notch tip, 4 mm either side.
+long damaged_pixels_above_notch(const RgbaImage& image, const std::string& scene_path) {
+  const SceneDef scene = load_scene(scene_path);
+  if (scene.flex_bodies.empty() || scene.flex_bodies[0].notches.empty()) {
+    throw std::runtime_error(scene_path + " has no notched flexible body");
+  }
+  Simulation sim(scene);
+  sim.initialize();
+  Snapshot first;
+  sim.fill_snapshot(first);
+  const Camera camera = fit_camera_beside_panels(first, image.width, image.height, kPanelWidth);
+
+  // the notch end inside the body is its tip
+  const FlexBodyDef& body = scene.flex_bodies[0];
+  const NotchDef& notch = body.notches[0];
+  const Vec2 tip = body.shape.contains(notch.p1) ? notch.p1 : notch.p2;
+  const Vec2 base = body.shape.contains(notch.p1) ? notch.p2 : notch.p1;
+  const Vec2 up = (tip - base).normalized();
+  const Vec2 across = perp(up);
+
+  // the colour map the GUI draws damage with by default
+  const std::string map_path =
+      find_resource_root() + "/assets/colormaps/" + RenderSettings{}.colormap + ".png";
+  const RgbaImage map = read_png(map_path);
+
+  std::set<std::pair<int, int>> damaged;  // distinct pixels: the sampling is finer than a pixel
+  for (double along = 4e-3; along <= 10e-3; along += 0.1e-3) {
+    for (double side = -4e-3; side <= 4e-3; side += 0.1e-3) {
+      const Vec2 px = camera.to_pixels(tip + along * up + side * across, image.width, image.height);
+      const int x = int(px.x()), y = int(px.y());
+      if (x < 0 || y < 0 || x >= image.width || y >= image.height) continue;
+      const uint8_t* p = image.at(x, y);
+      // nearest colour-map entry
+      double best = 1e30;
+      int best_i = 0;
+      for (int i = 0; i < map.width; ++i) {
+        const uint8_t* m = map.at(i, 0);
+        const double d = std::hypot(double(p[0] - m[0]), double(p[1] - m[1]), double(p[2] - m[2]));
+        if (d < best) best = d, best_i = i;
+      }
+      if (best <= kColourMatch && double(best_i) / (map.width - 1) >= kDamagedFrom) damaged.insert({x, y});
+    }
+  }
+  return static_cast<long>(damaged.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 2 && argc != 4) return usage();
+  const std::string mode = argc == 4 ? argv[2] : "";
+  if (argc == 4 && mode != "--crack" && mode != "--no-crack") return usage();
+  try {
+    const RgbaImage image = read_png(argv[1]);
+    std::printf("%s: %d x %d\n", argv[1], image.width, image.height);
+    bool ok = check_not_blank(image);
+    if (!mode.empty()) {
+      const long damaged = damaged_pixels_above_notch(image, argv[3]);
+      std::printf("%ld damage-coloured pixels in the ligament above the notch\n", damaged);
+      if (mode == "--crack" && damaged < kMinDamagedPixels) {
+        std::printf("FAIL: no crack drawn above the notch (need %ld)\n", kMinDamagedPixels);
+        ok = false;
+      }
+      if (mode == "--no-crack" && damaged >= kMinDamagedPixels) {
+        std::printf("FAIL: damage drawn above the notch before the crack can have grown\n");
+        ok = false;
+      }
+    }
+    std::printf("%s\n", ok ? "PASS" : "FAIL");
+    return ok ? 0 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "gui_png_check: %s\n", e.what());
+    return 1;
+  }
+}

@@ -129,6 +129,11 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   pending_steps_ = 0;
   reanchor();
   log_.add(std::string(what) + ": scene '" + scene.name + "' at t = 0, paused");
+  // a recording goes on from the new start
+  if (record_interval_ > 0.0) {
+    next_record_ = model_->time();
+    record_if_due();
+  }
 }
 
 void SimWorker::load_from_disk(const std::string& path, const std::vector<std::string>& overrides,
@@ -172,7 +177,7 @@ void SimWorker::apply(SimCommand& c) {
       running_ = true;
       pending_steps_ = 0;
       reanchor();
-      log_.add("run at " + describe_speed(speed_) + by);
+      log_.add("run, " + describe_speed(speed_) + by);
       break;
     case Kind::kPause:
       running_ = false;

@@ -5,6 +5,9 @@
 
 namespace periflex {
 
+// Below this many particles a loop runs on one thread: fork and join would cost more than the work.
+constexpr int kParallelMin = 4096;
+
 void add_bond_forces(const BondStore& bonds, const double* __restrict pos, double* __restrict force) {
   const int n = bonds.particle_count();
   const int64_t* __restrict row = bonds.row.data();
@@ -14,7 +17,7 @@ void add_bond_forces(const BondStore& bonds, const double* __restrict pos, doubl
 
   // k (1/|xi| - 1/|y|) y = k s y/|y|: one square root and one division per bond, no branch
   // (a broken bond has k = 0)
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (int i = 0; i < n; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     double fx = 0.0, fy = 0.0;
@@ -40,7 +43,7 @@ void add_damped_bond_forces(const BondStore& bonds, const double* __restrict pos
   const double* __restrict k = bonds.stiffness.data();
 
   // stretch rate ds/dt = e . (v_j - v_i) / |xi|; the pair force k (s + eta/E ds/dt) acts along e
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (int i = 0; i < n; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     const double vxi = vel[2 * i], vyi = vel[2 * i + 1];
@@ -65,7 +68,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
   const int n = bonds.particle_count();
   double sum = 0.0;
   // each pair is visited twice: a quarter of k |xi| s^2 per visit
-#pragma omp parallel for schedule(static) reduction(+ : sum)
+#pragma omp parallel for schedule(static) reduction(+ : sum) if (n >= kParallelMin)
   for (int i = 0; i < n; ++i) {
     double local = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
@@ -82,7 +85,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
 double bond_damping_power(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e) {
   const int n = bonds.particle_count();
   double sum = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : sum)
+#pragma omp parallel for schedule(static) reduction(+ : sum) if (n >= kParallelMin)
   for (int i = 0; i < n; ++i) {
     double local = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
@@ -103,7 +106,7 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
   long directed = 0;
   double energy = 0.0;
   // both copies of a bond see the same stretch bit for bit, so both break in this pass
-#pragma omp parallel for schedule(static) reduction(+ : directed, energy)
+#pragma omp parallel for schedule(static) reduction(+ : directed, energy) if (n >= kParallelMin)
   for (int i = 0; i < n; ++i) {
     if (no_fail && no_fail[i]) continue;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
@@ -126,7 +129,7 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
 
 void max_bond_stretch(const BondStore& bonds, const double* pos, float* out) {
   const int n = bonds.particle_count();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (int i = 0; i < n; ++i) {
     double most = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {

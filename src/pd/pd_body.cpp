@@ -208,20 +208,23 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   bonds.inv_length.shrink_to_fit();
   bonds.broken.assign(bonds.neighbor.size(), 0);
 
-  // surface correction, energy method of Madenci & Oterkus (2014): under uniaxial strain along
+  // surface correction, energy method of Madenci & Oterkus (2014): under uniaxial stress along
   // x (then y) each particle's factor is continuum / discrete energy density; a bond takes the
   // mean of its ends' factors per axis, combined along its direction n as
-  // G = ((n_x / G_x)^2 + (n_y / G_y)^2)^(-1/2)
+  // G = ((n_x / G_x)^2 + (n_y / G_y)^2)^(-1/2). Uniaxial stress (H = diag(1, -1/3), the
+  // contraction of nu = 1/3) rather than uniaxial strain, so that a free edge loaded along
+  // itself, the usual case, is calibrated in the state it is in.
   std::vector<double> gx(n, 1.0), gy(n, 1.0);
   if (def.surface_correction) {
-    const double w_cont = uniaxial_strain_energy_density(m->c, def.thickness, m->delta, 1.0);
+    const double w_cont = uniaxial_stress_energy_density(m->c, def.thickness, m->delta, 1.0);
     for (int i = 0; i < n; ++i) {
       double wx = 0.0, wy = 0.0;
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-        // linearised stretch under H = diag(1, 0) is n_x^2, under diag(0, 1) it is n_y^2
+        // linearised stretch n . H n: n_x^2 - n_y^2 / 3 along x, n_y^2 - n_x^2 / 3 along y
         const double cx = nx2[b], cy = 1.0 - cx;
-        wx += 0.25 * k0[b] / bonds.inv_length[b] * cx * cx;
-        wy += 0.25 * k0[b] / bonds.inv_length[b] * cy * cy;
+        const double sx = cx - cy / 3.0, sy = cy - cx / 3.0;
+        wx += 0.25 * k0[b] / bonds.inv_length[b] * sx * sx;
+        wy += 0.25 * k0[b] / bonds.inv_length[b] * sy * sy;
       }
       if (wx > 0.0) gx[i] = w_cont * v / wx;
       if (wy > 0.0) gy[i] = w_cont * v / wy;

@@ -32,6 +32,10 @@ double uniaxial_strain_energy_density(double c, double t, double delta, double e
   return kPi * c * t * delta * delta * delta * eps * eps / 16.0;
 }
 
+double uniaxial_stress_energy_density(double c, double t, double delta, double eps) {
+  return kPi * c * t * delta * delta * delta * eps * eps / 18.0;
+}
+
 double cell_fraction_in_disc(int a, int b, double m) {
   // midpoint rule across the cell in x; in y the chord of the disc is cut exactly
   constexpr int kSamples = 512;

@@ -31,6 +31,11 @@ double isotropic_energy_density(double c, double thickness, double horizon, doub
 // pi c t delta^3 eps^2 / 16 (= E eps^2 / (2 (1 - nu^2)) with nu = 1/3 in plane stress).
 double uniaxial_strain_energy_density(double c, double thickness, double horizon, double eps);
 
+// Strain energy density of the continuum under H = diag(eps, -eps/3), uniaxial stress for the
+// implied Poisson ratio (nu = 1/3 plane stress; the same contraction in plane strain, nu = 1/4):
+// pi c t delta^3 eps^2 / 18 (= E eps^2 / 2 in plane stress).
+double uniaxial_stress_energy_density(double c, double thickness, double horizon, double eps);
+
 // Fraction of the square cell of side 1 centred at (a, b) that lies inside the disc of radius
 // m about the origin (grid units): the exact partial volume of a neighbour cut by the horizon.
 double cell_fraction_in_disc(int a, int b, double m);

@@ -50,6 +50,8 @@ toml::table parse_value(const std::string& text, const std::string& key, const s
   if (value.empty()) fail_override(text, key, "no value after '='");
   try {
     toml::table holder = toml::parse("value = " + value + "\n", std::string_view("--set"));
+    // a value smuggling in more keys ("1\nother = 2") is not one value
+    if (holder.size() != 1) fail_override(text, key, "'" + value + "' is not a single TOML value");
     return holder;
   } catch (const toml::parse_error& error) {
     if (is_bare_word(value)) {

@@ -71,7 +71,7 @@ ShapeDef read_shape(const ReadContext& context, const toml::node& node, const st
     const double area = polygon_signed_area(shape.vertices);
     double extent = 0.0;
     for (const Vec2& v : shape.vertices) extent = std::max(extent, (v - shape.vertices.front()).norm());
-    if (!(std::abs(area) > 1e-14 * extent * extent) || area == 0.0)
+    if (!(std::abs(area) > 1e-14 * extent * extent))
       in.fail("vertices", "the polygon encloses no area (are its vertices collinear or repeated?)");
     // the schema asks for counter-clockwise; accept clockwise by reversing it
     if (area < 0.0) std::reverse(shape.vertices.begin(), shape.vertices.end());

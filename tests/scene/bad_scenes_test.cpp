@@ -136,6 +136,7 @@ const BadOverride kBadOverrides[] = {
     {"body.7.mass=1", "body.7.mass", "index 7 is beyond the 1 elements"},
     {"solver..dt=1", "solver..dt", "empty segment"},
     {"joint.pin.length=0.3", "joint.pin.length", "does not apply to a revolute joint"},
+    {"solver.dt=1\nend_time = 5", "solver.dt", "not a single TOML value"},
 };
 
 TEST(BadOverrides, EachIsRefusedNamingTheOverride) {

@@ -5,7 +5,7 @@
 
 namespace periflex {
 
-double shape_area(const ShapeDef& shape) {
+double grid_shape_area(const ShapeDef& shape) {
   switch (shape.kind) {
     case ShapeDef::Kind::kNone:
       return 0.0;
@@ -26,7 +26,7 @@ double shape_area(const ShapeDef& shape) {
   return 0.0;
 }
 
-void shape_bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi) {
+void grid_shape_bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi) {
   lo = Vec2::Zero();
   hi = Vec2::Zero();
   switch (shape.kind) {
@@ -60,14 +60,14 @@ void shape_bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi) {
 }
 
 double estimated_particle_count(const ShapeDef& shape, double dx) {
-  return dx > 0.0 ? shape_area(shape) / (dx * dx) : 0.0;
+  return dx > 0.0 ? grid_shape_area(shape) / (dx * dx) : 0.0;
 }
 
 ParticleGrid fill_grid(const ShapeDef& shape, const std::vector<ShapeDef>& holes, double dx) {
   ParticleGrid grid;
   grid.spacing = dx;
   Vec2 lo, hi;
-  shape_bounds(shape, lo, hi);
+  grid_shape_bounds(shape, lo, hi);
   const Vec2 mid = 0.5 * (lo + hi);
 
   // cells per axis: the extent in cells, plus one spare column each side that the

@@ -20,10 +20,10 @@ struct ParticleGrid {
 };
 
 // Area of a shape (box, circle, polygon, bar); 0 for none.
-double shape_area(const ShapeDef& shape);
+double grid_shape_area(const ShapeDef& shape);
 
 // Axis-aligned bounds of a shape.
-void shape_bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi);
+void grid_shape_bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi);
 
 // Particle count the shape would need at spacing dx (area / dx^2, holes ignored): an
 // estimate made before anything is allocated.

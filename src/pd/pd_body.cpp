@@ -147,15 +147,14 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
     m->s0 = critical_stretch_from_energy(mat.fracture_energy, mat.youngs_modulus, m->delta, mat.plane_strain,
                                          def.influence);
   } else if (def.fracture) {
-    m->warnings.push_back("flex body '" + def.name +
-                          "': fracture is on but neither fracture_energy nor critical_stretch is given; "
+    m->warnings.push_back("fracture is on but neither fracture_energy nor critical_stretch is given; "
                           "bonds will not break");
   }
   if (mat.poisson_ratio >= 0.0) {
     const double implied = implied_poisson_ratio(mat.plane_strain);
     if (std::abs(mat.poisson_ratio - implied) > 1e-3) {
       std::ostringstream msg;
-      msg << "flex body '" << def.name << "': bond-based peridynamics implies a Poisson ratio of "
+      msg << "bond-based peridynamics implies a Poisson ratio of "
           << (mat.plane_strain ? "1/4 in plane strain" : "1/3 in plane stress") << "; the stated "
           << mat.poisson_ratio << " is not represented";
       m->warnings.push_back(msg.str());
@@ -247,7 +246,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
     for (int i = 0; i < n; ++i)
       if (load.region.contains(Vec2(m->grid.x[i], m->grid.y[i]))) inside.push_back(i);
     if (inside.empty()) {
-      m->warnings.push_back("flex body '" + def.name + "': load '" + load.name + "' selects no particle");
+      m->warnings.push_back("load '" + load.name + "' selects no particle");
       continue;
     }
     switch (load.kind) {

@@ -1,0 +1,102 @@
+// Bond-force throughput of the peridynamic kernel: a square glass plate at horizon ratio 3,
+// particles displaced by a small random field, forces evaluated on 1 thread and on all.
+// Counters: bond evaluations per second (each stored direction counts once, the work the
+// gather loop does), per-core rate, bytes per particle and per bond of the whole body.
+#include <benchmark/benchmark.h>
+#include <omp.h>
+
+#include <random>
+
+#include "pd/bond_kernel.h"
+#include "pd/pd_body.h"
+
+namespace periflex {
+namespace {
+
+// A plate of side x side particles, dx = 1 mm, and positions perturbed by 1e-6 m.
+struct Plate {
+  std::unique_ptr<PdBody> body;
+  Eigen::VectorXd q, qd, g;
+  explicit Plate(int side) {
+    FlexBodyDef def;
+    def.name = "bench";
+    def.shape.kind = ShapeDef::Kind::kBox;
+    def.shape.width = def.shape.height = side * 1e-3;
+    def.grid_spacing = 1e-3;
+    def.thickness = 1e-3;
+    def.material.youngs_modulus = 72e9;
+    def.material.density = 2440.0;
+    def.material.fracture_energy = 3.8;
+    body = PdBody::build(def, 0);
+    q = Eigen::Map<const Eigen::VectorXd>(body->reference_positions().data(), 2 * body->particle_count());
+    std::mt19937 rng(1);
+    std::normal_distribution<double> noise(0.0, 1e-6);
+    qd.resize(q.size());
+    for (int k = 0; k < q.size(); ++k) {
+      q[k] += noise(rng);
+      qd[k] = noise(rng) * 1e3;
+    }
+    g = Eigen::VectorXd::Zero(q.size());
+  }
+};
+
+Plate& plate() {
+  static Plate p(500);  // 250,000 particles, about 8.6 million stored bond directions
+  return p;
+}
+
+void set_threads(benchmark::State& state) {
+  omp_set_num_threads(state.range(0) > 0 ? static_cast<int>(state.range(0)) : omp_get_num_procs());
+}
+
+void report(benchmark::State& state, const Plate& p) {
+  const double bonds = static_cast<double>(p.body->bonds().directed_count());
+  const int threads = state.range(0) > 0 ? static_cast<int>(state.range(0)) : omp_get_num_procs();
+  state.counters["threads"] = threads;
+  state.counters["bond_evals_per_s"] = benchmark::Counter(bonds * state.iterations(), benchmark::Counter::kIsRate);
+  state.counters["bond_evals_per_s_per_core"] =
+      benchmark::Counter(bonds * state.iterations() / threads, benchmark::Counter::kIsRate);
+  state.counters["bytes_per_particle"] = static_cast<double>(p.body->memory_bytes()) / p.body->particle_count();
+  state.counters["bytes_per_bond"] = static_cast<double>(p.body->bonds().bytes()) / bonds;
+  state.counters["bonds_per_particle"] = bonds / p.body->particle_count();
+}
+
+// Elastic bond forces (the kernel every explicit step runs).
+void BM_BondForces(benchmark::State& state) {
+  Plate& p = plate();
+  set_threads(state);
+  for (auto _ : state) {
+    add_bond_forces(p.body->bonds(), p.q.data(), p.g.data());
+    benchmark::ClobberMemory();
+  }
+  report(state, p);
+}
+BENCHMARK(BM_BondForces)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// Bond forces with viscous bond damping (needs velocities).
+void BM_DampedBondForces(benchmark::State& state) {
+  Plate& p = plate();
+  set_threads(state);
+  for (auto _ : state) {
+    add_damped_bond_forces(p.body->bonds(), p.q.data(), p.qd.data(), 1e-8, p.g.data());
+    benchmark::ClobberMemory();
+  }
+  report(state, p);
+}
+BENCHMARK(BM_DampedBondForces)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The stretch check of one accepted step (nothing breaks here: the field is far below s0).
+void BM_FractureCheck(benchmark::State& state) {
+  Plate& p = plate();
+  set_threads(state);
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(p.body->update_fracture(p.q));
+  }
+  report(state, p);
+}
+BENCHMARK(BM_FractureCheck)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace periflex
+
+BENCHMARK_MAIN();

@@ -112,6 +112,7 @@ void GuiApp::take_snapshot() {
   }
   if (status_.scene_generation != seen_scene_generation_) {
     seen_scene_generation_ = status_.scene_generation;
+    glfwSetWindowTitle(window_, ("periflex - " + status_.scene_name).c_str());
     fit_pending_ = true;
     follow_ = -1;
     const auto found = std::find(scenes_.begin(), scenes_.end(),

@@ -47,6 +47,7 @@ class GuiApp {
   void panel_simulation();
   void panel_parameters();
   void panel_view();
+  void panel_view_controls();
   void panel_plots();
   void panel_export(int fb_width, int fb_height);
   void panel_log();

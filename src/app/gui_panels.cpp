@@ -173,7 +173,47 @@ void GuiApp::panel_parameters() {
   for (const std::string& w : status_.info.warnings) warning_text(w);
 }
 
+namespace {
+
+// Describes what differs between two view settings, for the log ("" when nothing does).
+std::string describe_view_change(const RenderSettings& a, const RenderSettings& b) {
+  std::string out;
+  const auto flag = [&out](const char* name, bool before, bool after) {
+    if (before != after) out += std::string(" ") + name + (after ? " on" : " off");
+  };
+  if (a.field != b.field) out += std::string(" field ") + field_name(b.field);
+  if (a.colormap != b.colormap) out += " colour map " + b.colormap;
+  if (a.auto_range != b.auto_range) out += b.auto_range ? " range auto" : " range fixed";
+  if (!b.auto_range && (a.range_min != b.range_min || a.range_max != b.range_max)) {
+    out += " range " + std::to_string(b.range_min) + " .. " + std::to_string(b.range_max);
+  }
+  flag("bodies", a.show_bodies, b.show_bodies);
+  flag("markers", a.show_markers, b.show_markers);
+  flag("springs", a.show_springs, b.show_springs);
+  flag("bonds", a.show_bonds, b.show_bonds);
+  flag("probes", a.show_probes, b.show_probes);
+  flag("trails", a.show_trails, b.show_trails);
+  flag("overlay", a.show_overlay, b.show_overlay);
+  return out;
+}
+
+}  // namespace
+
 void GuiApp::panel_view() {
+  // every change made here is logged once the panel is drawn
+  const RenderSettings before = render_;
+  const int follow_before = follow_;
+  panel_view_controls();
+  const std::string change = describe_view_change(before, render_);
+  if (!change.empty()) log_.add("view:" + change + " (ui)");
+  if (follow_ != follow_before) {
+    const Snapshot& snap = worker_.snapshot();
+    log_.add(follow_ > 0 && snap.geometry ? "follow " + snap.geometry->bodies[follow_].name + " (ui)"
+                                          : std::string("follow none (ui)"));
+  }
+}
+
+void GuiApp::panel_view_controls() {
   const Snapshot& snap = worker_.snapshot();
   const bool particles = has_particles(snap);
   if (particles) {

@@ -272,6 +272,32 @@ TEST(SimWorker, RecordingPublishesOneFramePerSimulatedInterval) {
   worker.stop();
 }
 
+TEST(SimWorker, RecordingGoesOnFromTheStartAfterReset) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+  worker.start(false, 1.0);
+  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
+  step.count = 3;
+  worker.send(step);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 3; }));
+  SimCommand rec = SimCommand::make(SimCommand::Kind::kRecord, "test");
+  rec.number = 2e-3;
+  worker.send(rec);  // first frame at step 3
+  worker.send(SimCommand::make(SimCommand::Kind::kReset, "test"));  // then one at step 0
+  step.count = 2;
+  worker.send(step);  // and one at step 2
+  std::vector<long> steps;
+  const auto give_up = std::chrono::steady_clock::now() + 20s;
+  Snapshot frame;
+  while (steps.size() < 3 && std::chrono::steady_clock::now() < give_up) {
+    if (worker.take_recorded(frame)) steps.push_back(frame.step);
+    else std::this_thread::sleep_for(1ms);
+  }
+  EXPECT_EQ(steps, (std::vector<long>{3, 0, 2}));
+  worker.stop();
+}
+
 TEST(LiveParameter, ParsesKnownKeysAndRejectsBadValues) {
   LiveSettings s;
   s.dt = 1e-3;

@@ -42,7 +42,7 @@ std::string join(const std::vector<std::string>& words) {
 class SceneBuilder {
  public:
   SceneBuilder(const ReadContext& context, const toml::table& root)
-      : context_(context), root_(root), top_(context, root, "", "the scene file") {}
+      : context_(context), top_(context, root, "", "the scene file") {}
 
   SceneDef build(const std::string& default_name) {
     // the model sections first, so that references can be resolved as they are read
@@ -172,6 +172,10 @@ class SceneBuilder {
     if (solver.dt_safety > 1.0)
       in.fail("dt_safety", "must be in (0, 1] (a fraction of the critical step), found " + format_number(solver.dt_safety));
     solver.threads = static_cast<int>(in.integer("threads", solver.threads, 0));
+    // HHT-alpha is unconditionally stable only for alpha in [-1/3, 0]
+    solver.hht_alpha = in.number("hht_alpha", solver.hht_alpha);
+    if (solver.hht_alpha < -1.0 / 3.0 || solver.hht_alpha > 0.0)
+      in.fail("hht_alpha", "must be in [-1/3, 0], found " + format_number(solver.hht_alpha));
     if (const toml::table* correction = in.optional_table("correction")) read_correction(*correction);
     in.finish();
   }
@@ -552,7 +556,6 @@ class SceneBuilder {
   }
 
   const ReadContext& context_;
-  const toml::table& root_;
   TableReader top_;
   SceneDef scene_;
   std::set<std::string> rigid_names_, flex_names_;

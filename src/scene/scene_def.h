@@ -209,6 +209,7 @@ struct SolverDef {
   bool auto_substep = false;       // explicit PD: sub-step when dt > safety * dt_crit
   double dt_safety = 0.8;          // fraction of the critical step allowed
   int threads = 0;                 // 0: all cores
+  double hht_alpha = -0.1;         // "hht": numerical damping alpha in [-1/3, 0] (0: trapezoidal rule)
 };
 
 // ---------------------------------------------------------------------------

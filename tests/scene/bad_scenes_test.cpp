@@ -63,6 +63,7 @@ const BadCase kBadCases[] = {
     {"gravity_three_components.toml", 3, "scene.gravity", "found 3 elements"},
     {"missing_material.toml", 2, "flex_body.plate.material", "missing required key 'material'"},
     {"float_threads.toml", 3, "solver.threads", "expected an integer"},
+    {"hht_alpha_out_of_range.toml", 4, "solver.hht_alpha", "must be in [-1/3, 0]"},
     {"missing_joint_name.toml", 8, "joint.0.name", "missing required key 'name'"},
 };
 

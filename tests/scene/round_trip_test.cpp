@@ -26,6 +26,7 @@ output_interval = 0.02
 auto_substep = true
 dt_safety = 0.5
 threads = 2
+hht_alpha = -0.2
 
 [solver.correction]
 method = "projection"
@@ -260,6 +261,7 @@ TEST_F(RoundTrip, SceneAndSolver) {
   EXPECT_TRUE(s.auto_substep);
   EXPECT_DOUBLE_EQ(s.dt_safety, 0.5);
   EXPECT_EQ(s.threads, 2);
+  EXPECT_DOUBLE_EQ(s.hht_alpha, -0.2);
   EXPECT_EQ(s.correction.method, CorrectionDef::Method::kProjection);
   EXPECT_DOUBLE_EQ(s.correction.alpha, 7.0);
   EXPECT_DOUBLE_EQ(s.correction.beta, 8.0);
@@ -280,7 +282,7 @@ TEST_F(RoundTrip, Bodies) {
   EXPECT_FALSE(crank.is_virtual);
   EXPECT_FALSE(crank.ground);
   EXPECT_EQ(crank.where.file, "dir/every.toml");
-  EXPECT_EQ(crank.where.line, 25);  // the [[body]] header (the text opens with a newline)
+  EXPECT_EQ(crank.where.line, 26);  // the [[body]] header (the text opens with a newline)
   ASSERT_EQ(crank.shapes.size(), 1u);
   EXPECT_EQ(crank.shapes[0].kind, ShapeDef::Kind::kBar);
   expect_vec(crank.shapes[0].p1, -0.5, 0.0);

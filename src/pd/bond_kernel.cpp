@@ -1,24 +1,50 @@
 #include "pd/bond_kernel.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
+#include <vector>
+
+// On x86-64 with GCC or Clang the two hottest row loops also exist as AVX2 code (4 doubles a
+// vector, hardware gathers, vector square root), chosen at run time when the CPU has AVX2. The
+// portable loops stay scalar-ish: std::sqrt may set errno, which keeps GCC from vectorising it
+// without -fno-math-errno, a flag the build does not set.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define PERIFLEX_HAVE_AVX2_KERNEL 1
+#include <immintrin.h>
+#endif
 
 namespace periflex {
+
+namespace {
 
 // Below this many particles a loop runs on one thread: fork and join would cost more than the work.
 constexpr int kParallelMin = 4096;
 
-void add_bond_forces(const BondStore& bonds, const double* __restrict pos, double* __restrict force) {
-  const int n = bonds.particle_count();
-  const int64_t* __restrict row = bonds.row.data();
-  const int32_t* __restrict nbr = bonds.neighbor.data();
-  const double* __restrict inv_len0 = bonds.inv_length.data();
-  const double* __restrict k = bonds.stiffness.data();
+// Calls fn(begin, end) over [0, n) split into one contiguous block per thread (the same
+// blocks a static schedule would give), or once when n is small.
+template <typename Fn>
+void for_blocks(int n, Fn&& fn) {
+  if (n < kParallelMin) {
+    fn(0, n);
+    return;
+  }
+#pragma omp parallel
+  {
+    const int threads = omp_get_num_threads(), id = omp_get_thread_num();
+    const int begin = static_cast<int>(static_cast<long>(n) * id / threads);
+    const int end = static_cast<int>(static_cast<long>(n) * (id + 1) / threads);
+    fn(begin, end);
+  }
+}
 
-  // k (1/|xi| - 1/|y|) y = k s y/|y|: one square root and one division per bond, no branch
-  // (a broken bond has k = 0)
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (int i = 0; i < n; ++i) {
+// k (1/|xi| - 1/|y|) y = k s y/|y|: one square root and one division per bond, no branch
+// (a broken bond has k = 0)
+void elastic_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
+                  const double* __restrict inv_len0, const double* __restrict k, const double* __restrict pos,
+                  double* __restrict force) {
+  for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     double fx = 0.0, fy = 0.0;
 #pragma omp simd reduction(+ : fx, fy)
@@ -34,17 +60,11 @@ void add_bond_forces(const BondStore& bonds, const double* __restrict pos, doubl
   }
 }
 
-void add_damped_bond_forces(const BondStore& bonds, const double* __restrict pos, const double* __restrict vel,
-                            double eta_over_e, double* __restrict force) {
-  const int n = bonds.particle_count();
-  const int64_t* __restrict row = bonds.row.data();
-  const int32_t* __restrict nbr = bonds.neighbor.data();
-  const double* __restrict inv_len0 = bonds.inv_length.data();
-  const double* __restrict k = bonds.stiffness.data();
-
-  // stretch rate ds/dt = e . (v_j - v_i) / |xi|; the pair force k (s + eta/E ds/dt) acts along e
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (int i = 0; i < n; ++i) {
+// as elastic_rows, plus k eta/E ds/dt with ds/dt = e . (v_j - v_i) / |xi|, along e
+void damped_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
+                 const double* __restrict inv_len0, const double* __restrict k, const double* __restrict pos,
+                 const double* __restrict vel, double eta_over_e, double* __restrict force) {
+  for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     const double vxi = vel[2 * i], vyi = vel[2 * i + 1];
     double fx = 0.0, fy = 0.0;
@@ -64,6 +84,142 @@ void add_damped_bond_forces(const BondStore& bonds, const double* __restrict pos
   }
 }
 
+// largest stretch over the intact bonds (k > 0) of each row; -1 for a row without any
+void row_max_stretch(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
+                     const double* __restrict inv_len0, const double* __restrict k, const double* __restrict pos,
+                     double* __restrict out) {
+  for (int i = begin; i < end; ++i) {
+    const double xi = pos[2 * i], yi = pos[2 * i + 1];
+    double most = -1.0;
+#pragma omp simd reduction(max : most)
+    for (int64_t b = row[i]; b < row[i + 1]; ++b) {
+      const int32_t j = nbr[b];
+      const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
+      const double s = std::sqrt(dx * dx + dy * dy) * inv_len0[b] - 1.0;
+      most = std::max(most, k[b] > 0.0 ? s : -1.0);
+    }
+    out[i] = most;
+  }
+}
+
+#ifdef PERIFLEX_HAVE_AVX2_KERNEL
+// sum of the four lanes, in a fixed order
+__attribute__((target("avx2"))) inline double lane_sum(__m256d v) {
+  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1);
+  const __m128d pair = _mm_add_pd(lo, hi);
+  return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
+}
+
+// elastic_rows four bonds at a time: gather the neighbours' x and y by index 2j, then the
+// same arithmetic lane-wise; the last (row length mod 4) bonds run scalar
+__attribute__((target("avx2"))) void elastic_rows_avx2(int begin, int end, const int64_t* __restrict row,
+                                                       const int32_t* __restrict nbr,
+                                                       const double* __restrict inv_len0,
+                                                       const double* __restrict k, const double* __restrict pos,
+                                                       double* __restrict force) {
+  const __m256d one = _mm256_set1_pd(1.0);
+  for (int i = begin; i < end; ++i) {
+    const double xi = pos[2 * i], yi = pos[2 * i + 1];
+    const __m256d vxi = _mm256_set1_pd(xi), vyi = _mm256_set1_pd(yi);
+    __m256d ax = _mm256_setzero_pd(), ay = _mm256_setzero_pd();
+    int64_t b = row[i];
+    const int64_t last = row[i + 1];
+    for (; b + 4 <= last; b += 4) {
+      const __m128i twice_j = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(nbr + b)), 1);
+      const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), vxi);
+      const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), vyi);
+      const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+      const __m256d inv_len = _mm256_div_pd(one, _mm256_sqrt_pd(r2));
+      const __m256d f = _mm256_mul_pd(_mm256_loadu_pd(k + b), _mm256_sub_pd(_mm256_loadu_pd(inv_len0 + b), inv_len));
+      ax = _mm256_add_pd(ax, _mm256_mul_pd(f, dx));
+      ay = _mm256_add_pd(ay, _mm256_mul_pd(f, dy));
+    }
+    double fx = lane_sum(ax), fy = lane_sum(ay);
+    for (; b < last; ++b) {
+      const int32_t j = nbr[b];
+      const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
+      const double f = k[b] * (inv_len0[b] - 1.0 / std::sqrt(dx * dx + dy * dy));
+      fx += f * dx;
+      fy += f * dy;
+    }
+    force[2 * i] += fx;
+    force[2 * i + 1] += fy;
+  }
+}
+
+// row_max_stretch four bonds at a time; broken bonds (k = 0) count as -1
+__attribute__((target("avx2"))) void row_max_stretch_avx2(int begin, int end, const int64_t* __restrict row,
+                                                          const int32_t* __restrict nbr,
+                                                          const double* __restrict inv_len0,
+                                                          const double* __restrict k,
+                                                          const double* __restrict pos, double* __restrict out) {
+  const __m256d one = _mm256_set1_pd(1.0), minus_one = _mm256_set1_pd(-1.0), zero = _mm256_setzero_pd();
+  for (int i = begin; i < end; ++i) {
+    const double xi = pos[2 * i], yi = pos[2 * i + 1];
+    const __m256d vxi = _mm256_set1_pd(xi), vyi = _mm256_set1_pd(yi);
+    __m256d most4 = minus_one;
+    int64_t b = row[i];
+    const int64_t last = row[i + 1];
+    for (; b + 4 <= last; b += 4) {
+      const __m128i twice_j = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(nbr + b)), 1);
+      const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), vxi);
+      const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), vyi);
+      const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+      const __m256d s = _mm256_sub_pd(_mm256_mul_pd(_mm256_sqrt_pd(r2), _mm256_loadu_pd(inv_len0 + b)), one);
+      const __m256d intact = _mm256_cmp_pd(_mm256_loadu_pd(k + b), zero, _CMP_GT_OQ);
+      most4 = _mm256_max_pd(most4, _mm256_blendv_pd(minus_one, s, intact));
+    }
+    alignas(32) double lanes[4];
+    _mm256_store_pd(lanes, most4);
+    double most = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+    for (; b < last; ++b) {
+      const int32_t j = nbr[b];
+      const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
+      const double s = std::sqrt(dx * dx + dy * dy) * inv_len0[b] - 1.0;
+      most = std::max(most, k[b] > 0.0 ? s : -1.0);
+    }
+    out[i] = most;
+  }
+}
+
+// true when the CPU runs AVX2 code (asked once)
+bool have_avx2() {
+  static const bool yes = __builtin_cpu_supports("avx2");
+  return yes;
+}
+#endif
+
+// the stretch of bond b of particle i, computed the same way for both of its copies
+inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t b) {
+  const int32_t j = bonds.neighbor[b];
+  const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
+  return std::sqrt(dx * dx + dy * dy) * bonds.inv_length[b] - 1.0;
+}
+
+}  // namespace
+
+void add_bond_forces(const BondStore& bonds, const double* pos, double* force) {
+  for_blocks(bonds.particle_count(), [&](int begin, int end) {
+#ifdef PERIFLEX_HAVE_AVX2_KERNEL
+    if (have_avx2()) {
+      elastic_rows_avx2(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                        bonds.stiffness.data(), pos, force);
+      return;
+    }
+#endif
+    elastic_rows(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                 bonds.stiffness.data(), pos, force);
+  });
+}
+
+void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
+                            double* force) {
+  for_blocks(bonds.particle_count(), [&](int begin, int end) {
+    damped_rows(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                bonds.stiffness.data(), pos, vel, eta_over_e, force);
+  });
+}
+
 double bond_strain_energy(const BondStore& bonds, const double* pos) {
   const int n = bonds.particle_count();
   double sum = 0.0;
@@ -72,9 +228,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
   for (int i = 0; i < n; ++i) {
     double local = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      const int32_t j = bonds.neighbor[b];
-      const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
-      const double s = std::sqrt(dx * dx + dy * dy) * bonds.inv_length[b] - 1.0;
+      const double s = stretch(bonds, pos, i, b);
       local += bonds.stiffness[b] * s * s / bonds.inv_length[b];
     }
     sum += 0.25 * local;
@@ -85,6 +239,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
 double bond_damping_power(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e) {
   const int n = bonds.particle_count();
   double sum = 0.0;
+  // k eta/E |xi| (ds/dt)^2 per pair, half per visit
 #pragma omp parallel for schedule(static) reduction(+ : sum) if (n >= kParallelMin)
   for (int i = 0; i < n; ++i) {
     double local = 0.0;
@@ -105,16 +260,25 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
   const int n = bonds.particle_count();
   long directed = 0;
   double energy = 0.0;
-  // both copies of a bond see the same stretch bit for bit, so both break in this pass
-#pragma omp parallel for schedule(static) reduction(+ : directed, energy) if (n >= kParallelMin)
+  // a vectorised pass finds the rows holding an intact bond beyond s0; only those are walked
+  // bond by bond. Both copies of a bond see the same stretch bit for bit, so both break here.
+  std::vector<double> most(n);
+  for_blocks(n, [&](int begin, int end) {
+#ifdef PERIFLEX_HAVE_AVX2_KERNEL
+    if (have_avx2()) {
+      row_max_stretch_avx2(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                           bonds.stiffness.data(), pos, most.data());
+      return;
+    }
+#endif
+    row_max_stretch(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                    bonds.stiffness.data(), pos, most.data());
+  });
   for (int i = 0; i < n; ++i) {
-    if (no_fail && no_fail[i]) continue;
+    if (most[i] <= s0 || (no_fail && no_fail[i])) continue;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      if (bonds.broken[b]) continue;
-      const int32_t j = bonds.neighbor[b];
-      if (no_fail && no_fail[j]) continue;
-      const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
-      const double s = std::sqrt(dx * dx + dy * dy) * bonds.inv_length[b] - 1.0;
+      if (bonds.broken[b] || (no_fail && no_fail[bonds.neighbor[b]])) continue;
+      const double s = stretch(bonds, pos, i, b);
       if (s > s0) {
         energy += 0.25 * bonds.stiffness[b] * s * s / bonds.inv_length[b];
         bonds.broken[b] = 1;
@@ -129,17 +293,19 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
 
 void max_bond_stretch(const BondStore& bonds, const double* pos, float* out) {
   const int n = bonds.particle_count();
-#pragma omp parallel for schedule(static) if (n >= kParallelMin)
-  for (int i = 0; i < n; ++i) {
-    double most = 0.0;
-    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      if (bonds.broken[b]) continue;
-      const int32_t j = bonds.neighbor[b];
-      const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
-      most = std::max(most, std::sqrt(dx * dx + dy * dy) * bonds.inv_length[b] - 1.0);
+  std::vector<double> most(n);
+  for_blocks(n, [&](int begin, int end) {
+#ifdef PERIFLEX_HAVE_AVX2_KERNEL
+    if (have_avx2()) {
+      row_max_stretch_avx2(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                           bonds.stiffness.data(), pos, most.data());
+      return;
     }
-    out[i] = static_cast<float>(most);
-  }
+#endif
+    row_max_stretch(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                    bonds.stiffness.data(), pos, most.data());
+  });
+  for (int i = 0; i < n; ++i) out[i] = static_cast<float>(std::max(most[i], 0.0));
 }
 
 }  // namespace periflex

@@ -58,11 +58,11 @@ struct LiveSettings {
 
 // A spring from a body point (or particle) to a point the mouse holds.
 struct MouseSpring {
-  int body = -1;                    // rigid body index (geometry order), or -1
+  int body = -1;                    // rigid body index (ground excluded: geometry index - 1), or -1
   int particle = -1;                // particle index (snapshot order), or -1
   Vec2 local_point = Vec2::Zero();  // body-fixed grab point (rigid)
   Vec2 target = Vec2::Zero();       // global
-  double stiffness = 0.0;           // 0: chosen from the mass grabbed
+  double stiffness = 0.0;           // 0: chosen from the mass grabbed (2 Hz for that mass)
 };
 
 class Simulation {
@@ -75,8 +75,13 @@ class Simulation {
   const SceneDef& scene() const;
   const ModelInfo& info() const;
 
+  // Projects q then qd onto the constraints at t = 0 (sizes in info()), checks the explicit
+  // stability limit and records the initial energies. step() calls it when not yet called.
   void initialize();
+  // One step of dt (several equal sub-steps when solver.auto_substep needs them).
   void step();
+  // Steps of dt up to exactly t, the last one shortened to land on it.
+  void advance_to(double t);
   double time() const;
   long step_count() const;
   double end_time() const;

@@ -1,0 +1,392 @@
+#include "solve/dynamics.h"
+
+#include <Eigen/SparseCore>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <set>
+
+#include "core/error.h"
+#include "solve/redundancy.h"
+
+namespace periflex {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+}  // namespace
+
+Dynamics::Dynamics(SystemModel& model) : model_(model) {}
+
+const std::string& Dynamics::block_of_row(int row) const {
+  const ConstraintBlock* found = &model_.constraints.front();
+  for (const auto& block : model_.constraints) {
+    if (block.first_row <= row) found = &block;
+  }
+  return found->constraint->name();
+}
+
+std::vector<std::string> Dynamics::dropped_blocks() const {
+  std::vector<std::string> names;
+  for (int row : dropped_) {
+    const std::string& name = block_of_row(row);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
+void Dynamics::analyse(double t) {
+  const int n = model_.coordinate_count;
+  const Eigen::VectorXd& q = model_.q0;
+
+  // constrained coordinates: any a constraint block depends on, unless prescribed
+  std::set<int> touched;
+  std::vector<int> coords;
+  for (const auto& block : model_.constraints) {
+    coords.clear();
+    block.constraint->coordinates(coords);
+    for (int c : coords) {
+      if (!model_.is_prescribed[c]) touched.insert(c);
+    }
+  }
+  constrained_.assign(touched.begin(), touched.end());
+  local_.assign(n, -1);
+  for (size_t k = 0; k < constrained_.size(); ++k) local_[constrained_[k]] = static_cast<int>(k);
+  free_.clear();
+  for (int c = 0; c < n; ++c) {
+    if (local_[c] < 0 && !model_.is_prescribed[c]) free_.push_back(c);
+  }
+
+  // a coordinate no constraint acts on needs mass of its own
+  for (int c : free_) {
+    if (model_.mass[c] > 0.0) continue;
+    const SourceLocation where = c < model_.rigid_coordinates ? model_.bodies[c / 3].where : SourceLocation{};
+    const char* which = (c < model_.rigid_coordinates && c % 3 == 2) ? "inertia" : "mass";
+    throw InputError(where, "motion undetermined: " + model_.coordinate_owner(c) + " has zero " + which +
+                                " and no constraint acts on it; give it " + which + " or attach it");
+  }
+
+  // dependent rows at t0 are dropped for the whole run
+  const int rows = model_.constraint_rows;
+  active_index_.assign(rows, -1);
+  for (int r = 0; r < rows; ++r) active_index_[r] = r;
+  active_.resize(rows);
+  for (int r = 0; r < rows; ++r) active_[r] = r;
+  dropped_.clear();
+  if (rows > 0) {
+    assemble_jacobian(t, q);
+    Eigen::SparseMatrix<double> j(rows, static_cast<int>(constrained_.size()));
+    j.setFromTriplets(local_j_.begin(), local_j_.end());
+    dropped_ = dependent_rows(j);
+    active_.clear();
+    for (int r = 0, a = 0; r < rows; ++r) {
+      if (std::binary_search(dropped_.begin(), dropped_.end(), r)) {
+        active_index_[r] = -1;
+      } else {
+        active_index_[r] = a++;
+        active_.push_back(r);
+      }
+    }
+  }
+
+  // masses of the constrained coordinates; projection weights floor zero masses at a small
+  // fraction of the typical mass of the same kind, so massless bodies follow but stay defined
+  const int nc = static_cast<int>(constrained_.size());
+  mass_c_.resize(nc);
+  weight_c_.resize(nc);
+  double mass_sum = 0.0, inertia_sum = 0.0;
+  int mass_count = 0, inertia_count = 0;
+  for (int c = 0; c < n; ++c) {
+    const bool rotational = c < model_.rigid_coordinates && c % 3 == 2;
+    if (model_.mass[c] <= 0.0) continue;
+    (rotational ? inertia_sum : mass_sum) += model_.mass[c];
+    ++(rotational ? inertia_count : mass_count);
+  }
+  const double mass_ref = mass_count ? mass_sum / mass_count : 1.0;
+  const double inertia_ref =
+      inertia_count ? inertia_sum / inertia_count : mass_ref * model_.length_scale * model_.length_scale;
+  for (int k = 0; k < nc; ++k) {
+    const int c = constrained_[k];
+    const bool rotational = c < model_.rigid_coordinates && c % 3 == 2;
+    mass_c_[k] = model_.mass[c];
+    weight_c_[k] = model_.mass[c] > 0.0 ? model_.mass[c] : 1e-6 * (rotational ? inertia_ref : mass_ref);
+  }
+
+  // massless constrained coordinates need the constraints to fix them: rank of J over them
+  std::vector<int> massless;
+  for (int k = 0; k < nc; ++k) {
+    if (mass_c_[k] <= 0.0) massless.push_back(k);
+  }
+  if (!massless.empty() && !active_.empty()) {
+    assemble_jacobian(t, q);
+    Eigen::SparseMatrix<double> j(active_rows(), nc);
+    j.setFromTriplets(local_j_.begin(), local_j_.end());
+    const Eigen::MatrixXd dense = Eigen::MatrixXd(j);
+    auto rank_of = [&](const std::vector<int>& cols) {
+      Eigen::MatrixXd sub(dense.rows(), static_cast<Eigen::Index>(cols.size()));
+      for (size_t k = 0; k < cols.size(); ++k) sub.col(static_cast<Eigen::Index>(k)) = dense.col(cols[k]);
+      return column_rank(sub);
+    };
+    if (rank_of(massless) < static_cast<int>(massless.size())) {
+      // name the bodies that are undetermined on their own, else all massless ones
+      std::vector<std::string> names;
+      std::vector<int> all_owners;
+      for (int k : massless) {
+        const std::string owner = model_.coordinate_owner(constrained_[k]);
+        if (std::find(names.begin(), names.end(), owner) == names.end()) names.push_back(owner);
+      }
+      std::vector<std::string> alone;
+      for (const auto& owner : names) {
+        std::vector<int> cols;
+        for (int k : massless) {
+          if (model_.coordinate_owner(constrained_[k]) == owner) cols.push_back(k);
+        }
+        if (rank_of(cols) < static_cast<int>(cols.size())) alone.push_back(owner);
+      }
+      const auto& list = alone.empty() ? names : alone;
+      std::string text;
+      for (const auto& s : list) text += (text.empty() ? "" : ", ") + s;
+      SourceLocation where;
+      const int c0 = constrained_[massless.front()];
+      if (c0 < model_.rigid_coordinates) where = model_.bodies[c0 / 3].where;
+      throw InputError(where, "motion undetermined: " + text +
+                                  " has zero mass or inertia and the constraints do not fix its motion; give "
+                                  "it mass and inertia or constrain it further");
+    }
+  }
+  lambda_ = Eigen::VectorXd::Zero(active_rows());
+  active_is_driver_.assign(active_rows(), 0);
+  for (const auto& block : model_.constraints) {
+    if (!block.constraint->is_driver()) continue;
+    for (int r = 0; r < block.constraint->rows(); ++r) {
+      const int a = active_index_[block.first_row + r];
+      if (a >= 0) active_is_driver_[a] = 1;
+    }
+  }
+}
+
+void Dynamics::assemble_jacobian(double t, const Eigen::VectorXd& q) {
+  all_.clear();
+  for (const auto& block : model_.constraints) block.constraint->jacobian(q, t, block.first_row, all_);
+  local_j_.clear();
+  prescribed_j_.clear();
+  for (const auto& e : all_) {
+    const int row = active_index_[e.row()];
+    if (row < 0) continue;
+    const int col = local_[e.col()];
+    if (col >= 0) {
+      local_j_.emplace_back(row, col, e.value());
+    } else if (model_.is_prescribed[e.col()]) {
+      prescribed_j_.emplace_back(row, e.col(), e.value());
+    }
+  }
+}
+
+void Dynamics::residual_all(double t, const Eigen::VectorXd& q) {
+  phi_all_.resize(model_.constraint_rows);
+  for (const auto& block : model_.constraints) block.constraint->residual(q, t, phi_all_.data() + block.first_row);
+}
+
+void Dynamics::time_derivative_all(double t, const Eigen::VectorXd& q) {
+  phi_t_all_.resize(model_.constraint_rows);
+  for (const auto& block : model_.constraints) {
+    block.constraint->time_derivative(q, t, phi_t_all_.data() + block.first_row);
+  }
+}
+
+void Dynamics::velocity_residual(const Eigen::VectorXd& qd, Eigen::VectorXd& out) const {
+  const int m = active_rows();
+  out.resize(m);
+  for (int a = 0; a < m; ++a) out[a] = phi_t_all_[active_[a]];
+  for (const auto& e : local_j_) out[e.row()] += e.value() * qd[constrained_[e.col()]];
+  for (const auto& e : prescribed_j_) out[e.row()] += e.value() * qd[e.col()];
+}
+
+void Dynamics::throw_singular(double t, const Eigen::VectorXd& q, const std::string& during) {
+  // find the blocks whose rows became dependent, to name them
+  assemble_jacobian(t, q);
+  Eigen::SparseMatrix<double> j(active_rows(), constrained_coordinates());
+  j.setFromTriplets(local_j_.begin(), local_j_.end());
+  std::string names;
+  for (int a : dependent_rows(j, 1e-8)) {
+    const std::string& name = block_of_row(active_[a]);
+    if (names.find("'" + name + "'") == std::string::npos) names += (names.empty() ? "'" : ", '") + name + "'";
+  }
+  throw NumericalError({"constraint Jacobian", -1, t,
+                        "the constraint Jacobian is singular during " + during +
+                            (names.empty() ? std::string() : " (dependent: " + names + ")") +
+                            "; the mechanism is at a toggle / locked position or a massless part is free",
+                        "change the geometry or the driver so the mechanism avoids this position"});
+}
+
+void Dynamics::impose_prescribed(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) const {
+  for (const auto& p : model_.prescribed) {
+    q[p.coordinate] = p.reference + p.displacement(t);
+    qd[p.coordinate] = p.displacement.d1(t);
+  }
+}
+
+void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::VectorXd& qd_in, Eigen::VectorXd& qdd,
+                          Eigen::Vector3d& power) {
+  // imposed motions replace whatever the integrator carried for those coordinates
+  const Eigen::VectorXd* qp = &q_in;
+  const Eigen::VectorXd* qdp = &qd_in;
+  if (!model_.prescribed.empty()) {
+    q_work_ = q_in;
+    qd_work_ = qd_in;
+    impose_prescribed(t, q_work_, qd_work_);
+    qp = &q_work_;
+    qdp = &qd_work_;
+  }
+  const Eigen::VectorXd& q = *qp;
+  const Eigen::VectorXd& qd = *qdp;
+  const int n = model_.coordinate_count;
+
+  // generalised forces: gravity, force elements, peridynamic bodies, the mouse
+  auto start = Clock::now();
+  g_ = model_.gravity_force;
+  double dissipated = 0.0, external = 0.0, driver = 0.0;
+  for (auto& f : model_.forces) {
+    f->add_forces(q, qd, t, g_);
+    dissipated += f->dissipation_power(q, qd);
+    external += f->external_power(q, qd, t);
+  }
+  for (auto& flex : model_.flex_bodies) {
+    flex->add_forces(q, qd, t, g_);
+    if (flex->bond_damping() != 0.0 || flex->global_damping() != 0.0) dissipated += flex->dissipation_power(q, qd);
+    external += flex->external_power(q, qd, t);
+  }
+  if (mouse_) {
+    const bool particle = mouse_->particle_coordinate >= 0;
+    const int c = mouse_->particle_coordinate;
+    const Vec2 p = particle ? Vec2(q[c], q[c + 1]) : mouse_->point.position(q);
+    const Vec2 v = particle ? Vec2(qd[c], qd[c + 1]) : mouse_->point.velocity(q, qd);
+    const Vec2 force = mouse_->stiffness * (mouse_->target - p) - mouse_->damping * v;
+    if (particle) {
+      g_[c] += force.x();
+      g_[c + 1] += force.y();
+    } else {
+      mouse_->point.add_force(g_, force, 1.0, q);
+    }
+    external += force.dot(v);
+  }
+  force_seconds_ += since(start);
+
+  // unconstrained coordinates: qdd = g / m; imposed ones: f''
+  qdd.resize(n);
+  for (int c : free_) qdd[c] = g_[c] / model_.mass[c];
+  for (const auto& p : model_.prescribed) qdd[p.coordinate] = p.displacement.d2(t);
+
+  // constrained coordinates: the augmented system
+  if (!constrained_.empty()) {
+    start = Clock::now();
+    const int nc = constrained_coordinates();
+    const int m = active_rows();
+    assemble_jacobian(t, q);
+    gamma_all_.resize(model_.constraint_rows);
+    for (const auto& block : model_.constraints) {
+      block.constraint->gamma(q, qd, t, gamma_all_.data() + block.first_row);
+    }
+    time_derivative_all(t, q);
+    velocity_residual(qd, jqd_);  // Phi_q qd + Phi_t
+    rhs_.resize(nc + m);
+    for (int k = 0; k < nc; ++k) rhs_[k] = g_[constrained_[k]];
+    for (int a = 0; a < m; ++a) rhs_[nc + a] = gamma_all_[active_[a]];
+    // imposed accelerations move to the right-hand side
+    for (const auto& e : prescribed_j_) rhs_[nc + e.row()] -= e.value() * qdd[e.col()];
+    // Baumgarte stabilisation: gamma - 2 alpha Phi_dot - beta^2 Phi
+    if (correction_.method == CorrectionDef::Method::kBaumgarte && m > 0) {
+      residual_all(t, q);
+      const double a2 = 2.0 * correction_.alpha, b2 = correction_.beta * correction_.beta;
+      for (int a = 0; a < m; ++a) rhs_[nc + a] -= a2 * jqd_[a] + b2 * phi_all_[active_[a]];
+    }
+    if (!kkt_.factorize(mass_c_, local_j_, m)) throw_singular(t, q, "the acceleration solve");
+    x_ = kkt_.solve(rhs_);
+    if (!x_.allFinite()) throw_singular(t, q, "the acceleration solve");
+    for (int k = 0; k < nc; ++k) qdd[constrained_[k]] = x_[k];
+    lambda_ = x_.tail(m);
+
+    // drivers do work -lambda (Phi_q qd) on the system (power of the reaction -Phi_q^T lambda)
+    for (int a = 0; a < m; ++a) {
+      if (active_is_driver_[a]) driver -= lambda_[a] * (jqd_[a] - phi_t_all_[active_[a]]);
+    }
+    // constraint forces on imposed coordinates are part of their reaction
+    for (const auto& e : prescribed_j_) g_[e.col()] -= e.value() * lambda_[e.row()];
+    constraint_seconds_ += since(start);
+  }
+  // imposed motions do the work of their reactions m qdd - g
+  for (const auto& p : model_.prescribed) {
+    const int c = p.coordinate;
+    driver += (model_.mass[c] * qdd[c] - g_[c]) * qd[c];
+  }
+  power = Eigen::Vector3d(dissipated, external, driver);
+}
+
+double Dynamics::project_positions(double t, Eigen::VectorXd& q, double tolerance, int max_iterations) {
+  if (active_.empty()) return 0.0;
+  const int nc = constrained_coordinates();
+  const int m = active_rows();
+  double error = position_violation(t, q);
+  // Newton on min (dq^T W dq) subject to Phi(q + dq) = 0
+  for (int it = 0; it < max_iterations && error > tolerance; ++it) {
+    assemble_jacobian(t, q);
+    if (!projection_kkt_.factorize(weight_c_, local_j_, m)) throw_singular(t, q, "the position projection");
+    rhs_ = Eigen::VectorXd::Zero(nc + m);
+    for (int a = 0; a < m; ++a) rhs_[nc + a] = -phi_all_[active_[a]];
+    x_ = projection_kkt_.solve(rhs_);
+    if (!x_.allFinite()) throw_singular(t, q, "the position projection");
+    for (int k = 0; k < nc; ++k) q[constrained_[k]] += x_[k];
+    error = position_violation(t, q);
+  }
+  return error;
+}
+
+double Dynamics::project_velocities(double t, const Eigen::VectorXd& q, Eigen::VectorXd& qd) {
+  if (active_.empty()) return 0.0;
+  const int nc = constrained_coordinates();
+  const int m = active_rows();
+  assemble_jacobian(t, q);
+  time_derivative_all(t, q);
+  velocity_residual(qd, jqd_);
+  if (!projection_kkt_.factorize(weight_c_, local_j_, m)) throw_singular(t, q, "the velocity projection");
+  // the correction dqd solves [W J^T; J 0][dqd; mu] = [0; -(Phi_q qd + Phi_t)]
+  rhs_ = Eigen::VectorXd::Zero(nc + m);
+  rhs_.tail(m) = -jqd_;
+  x_ = projection_kkt_.solve(rhs_);
+  if (!x_.allFinite()) throw_singular(t, q, "the velocity projection");
+  double change = 0.0;
+  for (int k = 0; k < nc; ++k) {
+    qd[constrained_[k]] += x_[k];
+    change = std::max(change, std::abs(x_[k]));
+  }
+  return change;
+}
+
+double Dynamics::position_violation(double t, const Eigen::VectorXd& q) {
+  if (active_.empty()) return 0.0;
+  residual_all(t, q);
+  double worst = 0.0;
+  for (int row : active_) worst = std::max(worst, std::abs(phi_all_[row]));
+  return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
+}
+
+double Dynamics::velocity_violation(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  if (active_.empty()) return 0.0;
+  assemble_jacobian(t, q);
+  time_derivative_all(t, q);
+  velocity_residual(qd, jqd_);
+  return jqd_.size() ? jqd_.cwiseAbs().maxCoeff() : 0.0;
+}
+
+std::string Dynamics::worst_constraint(double t, const Eigen::VectorXd& q) {
+  if (active_.empty()) return "";
+  residual_all(t, q);
+  int worst_row = active_.front();
+  for (int row : active_) {
+    if (!(std::abs(phi_all_[row]) <= std::abs(phi_all_[worst_row]))) worst_row = row;
+  }
+  return block_of_row(worst_row);
+}
+
+}  // namespace periflex

@@ -1,0 +1,103 @@
+// The equations of motion of the assembled model: generalised forces, the constraint solve
+// [M Phi_q^T; Phi_q 0][qdd; lambda] = [g; gamma] over the constrained coordinates only
+// (unconstrained ones get qdd = g / m directly), imposed particle motions, the Baumgarte
+// terms, and the mass-weighted projections of positions and velocities onto the constraints.
+#pragma once
+
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solve/integrator.h"
+#include "solve/kkt_solver.h"
+#include "solve/system_model.h"
+
+namespace periflex {
+
+// A spring from a body point or a particle to a point the mouse holds (resolved indices).
+struct MouseSpringForce {
+  BodyPoint point;               // rigid grab point (point.body >= 0), or
+  int particle_coordinate = -1;  // index of a particle's x in q
+  Vec2 target = Vec2::Zero();
+  double stiffness = 0.0, damping = 0.0;
+};
+
+class Dynamics final : public OdeSystem {
+ public:
+  explicit Dynamics(SystemModel& model);
+
+  // At (t, q0): finds dependent constraint rows (dropped from then on) and checks that every
+  // coordinate's motion is determined. Throws InputError naming an undetermined body.
+  void analyse(double t);
+  // Global rows dropped as dependent, and the names of the blocks they came from.
+  const std::vector<int>& dropped_rows() const { return dropped_; }
+  std::vector<std::string> dropped_blocks() const;
+  int active_rows() const { return static_cast<int>(active_.size()); }
+  int constrained_coordinates() const { return static_cast<int>(constrained_.size()); }
+  bool has_constraints() const { return !active_.empty(); }
+
+  void set_correction(const CorrectionDef& correction) { correction_ = correction; }
+  const CorrectionDef& correction() const { return correction_; }
+  void set_mouse_spring(const std::optional<MouseSpringForce>& spring) { mouse_ = spring; }
+
+  // OdeSystem: accelerations and the dissipated / external / driver powers.
+  void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd,
+                  Eigen::Vector3d& power) override;
+  // Multipliers of the active rows from the last derivative() call.
+  const Eigen::VectorXd& multipliers() const { return lambda_; }
+
+  // Writes the imposed q and qd of the prescribed particle coordinates at t.
+  void impose_prescribed(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) const;
+  // Newton iterations on Phi(q, t) = 0 with the mass-weighted least change; returns max |Phi| after.
+  double project_positions(double t, Eigen::VectorXd& q, double tolerance, int max_iterations);
+  // Mass-weighted least change of qd with Phi_q qd + Phi_t = 0; returns max |change|.
+  double project_velocities(double t, const Eigen::VectorXd& q, Eigen::VectorXd& qd);
+
+  // max |Phi| and max |Phi_q qd + Phi_t| over the active rows.
+  double position_violation(double t, const Eigen::VectorXd& q);
+  double velocity_violation(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  // Name of the block with the largest |Phi| at (t, q).
+  std::string worst_constraint(double t, const Eigen::VectorXd& q);
+
+  // Wall-clock seconds in force evaluation and in the constraint solve.
+  double force_seconds() const { return force_seconds_; }
+  double constraint_seconds() const { return constraint_seconds_; }
+  // Times the augmented matrix pattern was analysed (stays 1 for a fixed constraint set).
+  int pattern_analyses() const { return kkt_.analyses(); }
+
+ private:
+  // Jacobian of the active rows at (t, q): local triplets over the constrained coordinates,
+  // and separately the entries on prescribed coordinates (global column).
+  void assemble_jacobian(double t, const Eigen::VectorXd& q);
+  void residual_all(double t, const Eigen::VectorXd& q);   // phi_all_
+  void time_derivative_all(double t, const Eigen::VectorXd& q);  // phi_t_all_
+  // Phi_q qd + Phi_t of the active rows (after assemble_jacobian and time_derivative_all).
+  void velocity_residual(const Eigen::VectorXd& qd, Eigen::VectorXd& out) const;
+  [[noreturn]] void throw_singular(double t, const Eigen::VectorXd& q, const std::string& during);
+  const std::string& block_of_row(int row) const;
+
+  SystemModel& model_;
+  CorrectionDef correction_;
+  std::optional<MouseSpringForce> mouse_;
+
+  // coordinate classes
+  std::vector<int> constrained_;  // global indices, in local order
+  std::vector<int> local_;        // global -> local (-1 when not constrained)
+  std::vector<int> free_;         // unconstrained, not prescribed
+  std::vector<int> dropped_;      // global rows
+  std::vector<int> active_;       // global rows kept, in order
+  std::vector<int> active_index_; // global row -> active index (-1 dropped)
+  std::vector<char> active_is_driver_;  // per active row
+  Eigen::VectorXd mass_c_, weight_c_;  // masses and projection weights of the constrained coordinates
+
+  // work arrays
+  Triplets all_, local_j_, prescribed_j_;
+  Eigen::VectorXd phi_all_, phi_t_all_, gamma_all_;
+  Eigen::VectorXd g_, q_work_, qd_work_, rhs_, x_, lambda_, jqd_;
+  KktSolver kkt_, projection_kkt_;
+
+  double force_seconds_ = 0.0, constraint_seconds_ = 0.0;
+};
+
+}  // namespace periflex

@@ -1,0 +1,114 @@
+// The fixed-step explicit integrators: semi-implicit (symplectic) Euler, velocity Verlet and
+// classical Runge-Kutta 4. The adaptive Dormand-Prince pair lives in dormand_prince.cpp.
+#include <array>
+
+#include "core/error.h"
+#include "solve/integrator.h"
+
+namespace periflex {
+
+std::unique_ptr<Integrator> make_dormand_prince(const SolverDef& solver);
+
+namespace {
+
+// Semi-implicit Euler: qd += h qdd(q, qd); q += h qd_new. First order, symplectic for
+// separable Hamiltonians, one force evaluation per step.
+class SymplecticEuler final : public Integrator {
+ public:
+  const std::string& name() const override { return name_; }
+  int order() const override { return 1; }
+  void step(OdeSystem& system, double t, double dt, OdeState& s) override {
+    system.derivative(t, s.q, s.qd, qdd_, power_);
+    s.qd += dt * qdd_;
+    s.q += dt * s.qd;
+    s.work += dt * power_;
+    ++accepted_;
+  }
+
+ private:
+  std::string name_ = "symplectic_euler";
+  Eigen::VectorXd qdd_;
+  Eigen::Vector3d power_;
+};
+
+// Velocity Verlet: half kick, drift, force at the new positions, half kick. Second order,
+// symplectic; the end acceleration is kept for the next step unless the state is edited.
+class VelocityVerlet final : public Integrator {
+ public:
+  const std::string& name() const override { return name_; }
+  int order() const override { return 2; }
+  void step(OdeSystem& system, double t, double dt, OdeState& s) override {
+    if (!cached_ || cached_time_ != t) system.derivative(t, s.q, s.qd, qdd_, power_);
+    const Eigen::Vector3d power_start = power_;
+    s.qd += 0.5 * dt * qdd_;
+    s.q += dt * s.qd;
+    // velocity-dependent forces see the half-step velocity
+    system.derivative(t + dt, s.q, s.qd, qdd_, power_);
+    s.qd += 0.5 * dt * qdd_;
+    s.work += 0.5 * dt * (power_start + power_);
+    cached_ = true;
+    cached_time_ = t + dt;
+    ++accepted_;
+  }
+  void reset() override { cached_ = false; }
+
+ private:
+  std::string name_ = "verlet";
+  Eigen::VectorXd qdd_;
+  Eigen::Vector3d power_;
+  bool cached_ = false;
+  double cached_time_ = 0.0;
+};
+
+// Classical fourth-order Runge-Kutta on (q, qd, work): four evaluations per step.
+class RungeKutta4 final : public Integrator {
+ public:
+  const std::string& name() const override { return name_; }
+  int order() const override { return 4; }
+  void step(OdeSystem& system, double t, double dt, OdeState& s) override {
+    static constexpr std::array<double, 4> kC = {0.0, 0.5, 0.5, 1.0};
+    static constexpr std::array<double, 4> kB = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
+    const Eigen::VectorXd q0 = s.q, qd0 = s.qd;
+    Eigen::VectorXd dq = Eigen::VectorXd::Zero(q0.size()), dqd = Eigen::VectorXd::Zero(q0.size());
+    Eigen::Vector3d dwork = Eigen::Vector3d::Zero();
+    // stage k evaluates at q0 + c_k h K_{k-1}; the stage velocity is the position slope
+    for (int k = 0; k < 4; ++k) {
+      if (k == 0) {
+        q_stage_ = q0;
+        qd_stage_ = qd0;
+      } else {
+        q_stage_ = q0 + kC[k] * dt * qd_stage_;
+        qd_stage_ = qd0 + kC[k] * dt * qdd_;
+      }
+      system.derivative(t + kC[k] * dt, q_stage_, qd_stage_, qdd_, power_);
+      dq += kB[k] * qd_stage_;
+      dqd += kB[k] * qdd_;
+      dwork += kB[k] * power_;
+    }
+    s.q = q0 + dt * dq;
+    s.qd = qd0 + dt * dqd;
+    s.work += dt * dwork;
+    ++accepted_;
+  }
+
+ private:
+  std::string name_ = "rk4";
+  Eigen::VectorXd q_stage_, qd_stage_, qdd_;
+  Eigen::Vector3d power_;
+};
+
+}  // namespace
+
+std::vector<std::string> integrator_names() { return {"symplectic_euler", "verlet", "rk4", "dopri54"}; }
+
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const SolverDef& solver) {
+  if (name == "symplectic_euler") return std::make_unique<SymplecticEuler>();
+  if (name == "verlet") return std::make_unique<VelocityVerlet>();
+  if (name == "rk4") return std::make_unique<RungeKutta4>();
+  if (name == "dopri54") return make_dormand_prince(solver);
+  std::string choices;
+  for (const auto& n : integrator_names()) choices += (choices.empty() ? "" : ", ") + n;
+  throw InputError({"", 0, 0, "solver.integrator"}, "unknown integrator '" + name + "'; choose one of " + choices);
+}
+
+}  // namespace periflex

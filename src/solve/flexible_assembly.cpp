@@ -1,0 +1,78 @@
+// The flexible part of the model: peridynamic bodies (their particles appended to q after the
+// rigid coordinates), their imposed motions, particle probes and the rigid-flexible joints.
+#include "core/error.h"
+#include "coupling/rigid_flexible_joint.h"
+#include "solve/system_model.h"
+
+namespace periflex {
+
+void build_flexible_part(const SceneDef& scene, SystemModel& m) {
+  // each flexible body takes the next contiguous slice of q
+  for (const auto& def : scene.flex_bodies) {
+    for (const auto& body : m.bodies) {
+      if (body.name == def.name) throw InputError(def.where, "a rigid body is also named '" + def.name + "'");
+    }
+    if (m.flex_index(def.name) >= 0) throw InputError(def.where, "two flexible bodies are named '" + def.name + "'");
+    const int offset = static_cast<int>(m.q0.size());
+    auto flex = PdBody::build(def, offset);
+    const int n = 2 * flex->particle_count();
+    const auto& reference = flex->reference_positions();
+    const auto velocities = flex->initial_velocities();
+    m.q0.conservativeResize(offset + n);
+    m.qd0.conservativeResize(offset + n);
+    for (int k = 0; k < n; ++k) {
+      m.q0[offset + k] = reference[k];
+      m.qd0[offset + k] = velocities[k];
+    }
+    for (const auto& p : flex->prescribed_coordinates()) m.prescribed.push_back(p);
+    m.flex_bodies.push_back(std::move(flex));
+  }
+
+  // particle probes: the particle nearest to the reference point
+  for (const auto& def : scene.probes) {
+    const int f = m.flex_index(def.body);
+    if (f < 0) continue;
+    const PdBody& flex = *m.flex_bodies[f];
+    ProbePoint p;
+    p.name = def.name;
+    p.particle_coordinate = flex.coordinate_offset() + 2 * flex.nearest_particle(def.point);
+    m.probes.push_back(p);
+  }
+
+  // attachments: every particle of the region follows the rigid body
+  for (const auto& def : scene.attachments) {
+    const int f = m.flex_index(def.flex_body);
+    if (f < 0) throw InputError(def.where, "attachment '" + def.name + "' names an unknown flexible body '" +
+                                               def.flex_body + "'");
+    const int body = m.body_index(def.body, def.where, "attachment '" + def.name + "'");
+    const PdBody& flex = *m.flex_bodies[f];
+    std::vector<int> coordinates;
+    for (int p : flex.particles_in(def.region)) coordinates.push_back(flex.coordinate_offset() + 2 * p);
+    if (coordinates.empty()) {
+      throw InputError(def.where, "attachment '" + def.name + "' holds no particle of '" + def.flex_body +
+                                      "'; enlarge its region");
+    }
+    auto joint = make_rigid_flexible_joint(def.name, body, coordinates, m.q0);
+    // drawn at the centroid of the attached particles, carried by the body
+    const auto* rf = dynamic_cast<const RigidFlexibleJoint*>(joint.get());
+    Vec2 centroid = Vec2::Zero();
+    if (rf) {
+      for (int k = 0; k < rf->particle_count(); ++k) centroid += rf->local_position(k);
+      centroid /= rf->particle_count();
+    }
+    MarkerSource marker;
+    marker.kind = Snapshot::Marker::Kind::kAttachment;
+    marker.a = marker.b = BodyPoint{body, centroid};
+    m.markers.push_back(marker);
+
+    ConstraintBlock block;
+    block.first_row = m.constraint_rows;
+    block.origin = ConstraintBlock::Origin::kAttachment;
+    m.constraint_rows += joint->rows();
+    block.constraint = std::move(joint);
+    m.constraints.push_back(std::move(block));
+    ++m.attachments;
+  }
+}
+
+}  // namespace periflex

@@ -1,0 +1,61 @@
+// Time integrators behind one small interface, so the stepper does not care which one runs
+// (and an implicit HHT / generalised-alpha can be added later beside them).
+//
+// The state is the second-order system q' = qd, qd' = qdd(t, q, qd) plus three running
+// integrals of power (dissipated, external, driver work) that the energy balance needs;
+// the integrator advances them with the same rule as q and qd.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene_def.h"
+
+namespace periflex {
+
+// Indices of OdeState::work.
+enum WorkIndex : int { kWorkDissipated = 0, kWorkExternal = 1, kWorkDriver = 2 };
+
+struct OdeState {
+  Eigen::VectorXd q, qd;
+  Eigen::Vector3d work = Eigen::Vector3d::Zero();  // integrals of the powers, see WorkIndex
+};
+
+// The right-hand side the integrators call: accelerations and the three powers.
+class OdeSystem {
+ public:
+  virtual ~OdeSystem() = default;
+  virtual void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd,
+                          Eigen::Vector3d& power) = 0;
+};
+
+class Integrator {
+ public:
+  virtual ~Integrator() = default;
+  // Name as written in scene files and on the command line.
+  virtual const std::string& name() const = 0;
+  // Global order of accuracy.
+  virtual int order() const = 0;
+  // Explicit integrators are bound by the critical step of stiff (peridynamic) parts.
+  virtual bool is_explicit() const { return true; }
+  // Adaptive integrators choose their own internal steps inside each call to step().
+  virtual bool is_adaptive() const { return false; }
+  // Advances s from t to t + dt.
+  virtual void step(OdeSystem& system, double t, double dt, OdeState& s) = 0;
+  // Forgets data cached from the previous step (the state was changed from outside).
+  virtual void reset() {}
+  // Internal steps taken and rejected so far (adaptive integrators; others count steps).
+  long accepted_steps() const { return accepted_; }
+  long rejected_steps() const { return rejected_; }
+
+ protected:
+  long accepted_ = 0, rejected_ = 0;
+};
+
+// Builds the integrator `name` (one of integrator_names()); rtol / atol from the solver
+// definition. Throws InputError naming the choices for an unknown name.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const SolverDef& solver);
+
+}  // namespace periflex

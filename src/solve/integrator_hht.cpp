@@ -1,0 +1,257 @@
+#include "solve/integrator_hht.h"
+
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "core/error.h"
+
+namespace periflex {
+
+namespace {
+
+constexpr int kMaxIterations = 25;
+constexpr double kNewtonTolerance = 1e-10;  // position increment / size of the configuration
+
+class Hht final : public Integrator {
+ public:
+  explicit Hht(double alpha)
+      : alpha_(alpha), gamma_(0.5 - alpha), beta_(0.25 * (1.0 - alpha) * (1.0 - alpha)) {}
+
+  const std::string& name() const override { return name_; }
+  int order() const override { return 2; }
+  bool is_explicit() const override { return false; }
+  // The stepper resets after a projection or broken bonds, which move the state by no more than
+  // the step's own error: the algorithmic acceleration is then kept (dropping it would cost the
+  // second order), and only a real edit of the state (checked at the next step) restarts.
+  void reset() override { edited_ = true; }
+
+  void step(OdeSystem& system, double t, double h, OdeState& s) override {
+    const Eigen::Index n = s.q.size();
+    // the acceleration at the start: kept from the last step, or evaluated afresh
+    // (the caller's clock may round differently from t + h: a millionth of a step is the same time)
+    const bool same_time = std::abs(cached_time_ - t) <= 1e-6 * h;
+    if (!cached_ || !same_time || a0_.size() != n || (edited_ && moved_far(s))) {
+      system.derivative(t, s.q, s.qd, f0_, power0_);
+      a0_ = f0_;
+      cached_ = true;
+    } else if (edited_ && (s.q != q_end_ || s.qd != v_end_)) {
+      // a small correction: the force term of the start follows the corrected state
+      system.derivative(t, s.q, s.qd, f0_, power0_);
+    }
+    edited_ = false;
+    if (h != tangent_h_) tangent_valid_ = false;
+
+    bool retried = false;
+    for (;;) {
+      if (solve_step(system, t, h, s)) break;
+      // one retry from scratch: a fresh sparsity pattern and tangent
+      if (retried) fail(t, h);
+      retried = true;
+      pattern_valid_ = false;
+      tangent_valid_ = false;
+    }
+    s.work += 0.5 * h * (power0_ + power1_);
+    s.q = q1_;
+    s.qd = v1_;
+    a0_ = a1_;
+    f0_ = f1_;
+    power0_ = power1_;
+    q_end_ = s.q;
+    v_end_ = s.qd;
+    cached_time_ = t + h;
+    ++accepted_;
+  }
+
+ private:
+  // True when the state differs from where the last step ended by more than a correction would
+  // move it (a thousandth of the configuration's size).
+  bool moved_far(const OdeState& s) const {
+    if (q_end_.size() != s.q.size()) return true;
+    const double size = std::max(q_end_.lpNorm<Eigen::Infinity>(), 1e-12);
+    return (s.q - q_end_).lpNorm<Eigen::Infinity>() > 1e-3 * size;
+  }
+
+  // Newmark updates of q1_, v1_ from the start state and the trial a1_.
+  void update_state(const OdeState& s, double h) {
+    q1_ = s.q + h * s.qd + h * h * ((0.5 - beta_) * a0_ + beta_ * a1_);
+    v1_ = s.qd + h * ((1.0 - gamma_) * a0_ + gamma_ * a1_);
+  }
+
+  // Newton iterations for a1; false when they do not converge.
+  bool solve_step(OdeSystem& system, double t, double h, const OdeState& s) {
+    const double size = std::max({s.q.lpNorm<Eigen::Infinity>(), h * s.qd.lpNorm<Eigen::Infinity>(), 1e-12});
+    const double tolerance = kNewtonTolerance * size;
+    a1_ = a0_;  // predictor: the acceleration carries over
+    bool fresh_tangent = false;
+    last_increment_ = std::numeric_limits<double>::infinity();
+    double previous = std::numeric_limits<double>::infinity();
+    for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
+      update_state(s, h);
+      system.derivative(t + h, q1_, v1_, f1_, power1_);
+      residual_ = a1_ - (1.0 + alpha_) * f1_ + alpha_ * f0_;
+      last_residual_ = residual_.lpNorm<Eigen::Infinity>();
+      if (!std::isfinite(last_residual_)) return false;
+      // a slowly converging or diverging old tangent is replaced at the current iterate
+      if (!tangent_valid_ || (!fresh_tangent && iteration > 0 && last_increment_ > 0.25 * previous)) {
+        if (!build_tangent(system, t, h)) return false;
+        fresh_tangent = true;
+      }
+      const Eigen::VectorXd delta = lu_.solve(-residual_);
+      if (lu_.info() != Eigen::Success || !delta.allFinite()) return false;
+      a1_ += delta;
+      previous = last_increment_;
+      last_increment_ = beta_ * h * h * delta.lpNorm<Eigen::Infinity>();
+      if (last_increment_ <= tolerance) {
+        update_state(s, h);
+        system.derivative(t + h, q1_, v1_, f1_, power1_);
+        // converged in a few iterations: the tangent is good for the next step too
+        tangent_valid_ = iteration < 4;
+        return f1_.allFinite();
+      }
+    }
+    return false;
+  }
+
+  // The iteration matrix S = I - (1 + alpha) (beta h^2 f_q + gamma h f_qd) by coloured finite
+  // differences about (q1_, v1_), then its sparse LU factors.
+  bool build_tangent(OdeSystem& system, double t, double h) {
+    const Eigen::Index n = q1_.size();
+    if (!pattern_valid_ || pattern_size_ != n) find_pattern(system, t, h);
+    const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
+    const double q_scale = std::max(q1_.lpNorm<Eigen::Infinity>(), 1e-6);
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(pattern_rows_.size() + n);
+    Eigen::VectorXd dq(n), dv(n), step_of(n);
+    for (const std::vector<int>& columns : colours_) {
+      // perturb every column of this colour at once: a = a1 + eps_j e_j
+      q_trial_ = q1_;
+      v_trial_ = v1_;
+      for (int j : columns) {
+        const double eps = root_eps * std::max(std::abs(q1_[j]), q_scale) / (beta_ * h * h);
+        step_of[j] = eps;
+        q_trial_[j] += beta_ * h * h * eps;
+        v_trial_[j] += gamma_ * h * eps;
+      }
+      system.derivative(t + h, q_trial_, v_trial_, f_trial_, power_trial_);
+      for (int j : columns) {
+        for (int k = pattern_start_[j]; k < pattern_start_[j + 1]; ++k) {
+          const int i = pattern_rows_[k];
+          const double g = (f_trial_[i] - f1_[i]) / step_of[j];
+          triplets.emplace_back(i, j, -(1.0 + alpha_) * g);
+        }
+      }
+    }
+    for (Eigen::Index i = 0; i < n; ++i) triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
+    Eigen::SparseMatrix<double> matrix(n, n);
+    matrix.setFromTriplets(triplets.begin(), triplets.end());
+    if (!analysed_) {
+      lu_.analyzePattern(matrix);
+      analysed_ = true;
+    }
+    lu_.factorize(matrix);
+    if (lu_.info() != Eigen::Success) return false;
+    tangent_valid_ = true;
+    tangent_h_ = h;
+    ++tangents_;
+    return true;
+  }
+
+  // Which outputs each coordinate moves, by one perturbation per coordinate, and a greedy
+  // colouring of the columns so that columns of one colour share no row.
+  void find_pattern(OdeSystem& system, double t, double h) {
+    const Eigen::Index n = q1_.size();
+    const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
+    const double q_scale = std::max(q1_.lpNorm<Eigen::Infinity>(), 1e-6);
+    std::vector<std::vector<int>> rows_of(n);
+    for (Eigen::Index j = 0; j < n; ++j) {
+      const double eps = root_eps * std::max(std::abs(q1_[j]), q_scale) / (beta_ * h * h);
+      q_trial_ = q1_;
+      v_trial_ = v1_;
+      q_trial_[j] += beta_ * h * h * eps;
+      v_trial_[j] += gamma_ * h * eps;
+      system.derivative(t + h, q_trial_, v_trial_, f_trial_, power_trial_);
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (f_trial_[i] != f1_[i] || i == j) rows_of[j].push_back(static_cast<int>(i));
+    }
+    pattern_start_.assign(n + 1, 0);
+    pattern_rows_.clear();
+    for (Eigen::Index j = 0; j < n; ++j) {
+      pattern_rows_.insert(pattern_rows_.end(), rows_of[j].begin(), rows_of[j].end());
+      pattern_start_[j + 1] = static_cast<int>(pattern_rows_.size());
+    }
+    // greedy colouring: a column joins the first colour none of whose rows it touches
+    colours_.clear();
+    std::vector<std::vector<char>> row_used;
+    for (Eigen::Index j = 0; j < n; ++j) {
+      size_t c = 0;
+      for (; c < colours_.size(); ++c) {
+        bool clash = false;
+        for (int i : rows_of[j])
+          if (row_used[c][i]) { clash = true; break; }
+        if (!clash) break;
+      }
+      if (c == colours_.size()) {
+        colours_.emplace_back();
+        row_used.emplace_back(n, 0);
+      }
+      colours_[c].push_back(static_cast<int>(j));
+      for (int i : rows_of[j]) row_used[c][i] = 1;
+    }
+    pattern_valid_ = true;
+    pattern_size_ = n;
+    analysed_ = false;
+  }
+
+  [[noreturn]] void fail(double t, double h) const {
+    std::ostringstream cause;
+    cause << "the HHT Newton iterations did not converge in " << kMaxIterations << " iterations (residual "
+          << last_residual_ << ", last position increment " << last_increment_ << ") at dt = " << h;
+    std::ostringstream remedy;
+    remedy << "lower solver.dt (e.g. to " << 0.25 * h << ")";
+    throw NumericalError({"Newton residual", accepted_ + 1, t + h, cause.str(), remedy.str()});
+  }
+
+  std::string name_ = "hht";
+  double alpha_, gamma_, beta_;
+
+  // the start of the step
+  bool cached_ = false, edited_ = false;
+  double cached_time_ = 0.0;
+  Eigen::VectorXd q_end_, v_end_;  // the state the last step ended in
+  Eigen::VectorXd a0_, f0_;
+  Eigen::Vector3d power0_ = Eigen::Vector3d::Zero();
+  // the iterate
+  Eigen::VectorXd a1_, q1_, v1_, f1_, residual_;
+  Eigen::Vector3d power1_ = Eigen::Vector3d::Zero();
+  double last_residual_ = 0.0, last_increment_ = 0.0;
+  // finite-difference scratch
+  Eigen::VectorXd q_trial_, v_trial_, f_trial_;
+  Eigen::Vector3d power_trial_ = Eigen::Vector3d::Zero();
+  // sparsity pattern (CSC: rows of each column) and column colours
+  bool pattern_valid_ = false;
+  Eigen::Index pattern_size_ = 0;
+  std::vector<int> pattern_start_, pattern_rows_;
+  std::vector<std::vector<int>> colours_;
+  // the factorised iteration matrix
+  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
+  bool analysed_ = false, tangent_valid_ = false;
+  double tangent_h_ = 0.0;
+  long tangents_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_hht(double alpha) {
+  if (!(alpha >= -1.0 / 3.0 && alpha <= 0.0)) throw std::invalid_argument("HHT alpha must lie in [-1/3, 0]");
+  return std::make_unique<Hht>(alpha);
+}
+
+std::unique_ptr<Integrator> make_hht(const SolverDef&) { return make_hht(kDefaultHhtAlpha); }
+
+}  // namespace periflex

@@ -1,0 +1,592 @@
+// The Simulation: assembles the model, keeps the state, steps it with the chosen integrator and
+// correction, books the energies, watches for divergence, and reports samples and snapshots.
+#include "solve/simulation.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include "core/error.h"
+#include "solve/dynamics.h"
+#include "solve/integrator.h"
+#include "solve/system_model.h"
+
+namespace periflex {
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+std::string number(double v) {
+  std::ostringstream out;
+  out.precision(3);
+  out << v;
+  return out.str();
+}
+
+// Bodies with fewer bonds than this send their bond pairs in snapshots.
+constexpr long kDrawnBondLimit = 5000;
+// Divergence bounds (documented in docs/solver.md): constraint violation above this fraction of
+// the model size, kinetic energy above this multiple of the energy the model can hold.
+constexpr double kViolationFraction = 0.05;
+constexpr double kEnergyGrowth = 1e3;
+}  // namespace
+
+struct Simulation::Impl {
+  SceneDef scene;
+  std::unique_ptr<SystemModel> model;
+  std::unique_ptr<Dynamics> dynamics;
+  std::unique_ptr<Integrator> integrator;
+  ModelInfo info;
+  LiveSettings live;
+
+  OdeState state;
+  double time = 0.0;
+  long steps = 0;
+  bool initialized = false;
+  double fracture_energy = 0.0;
+  long broken_bonds = 0;
+  double initial_total = 0.0;      // kinetic + potential at t = 0
+  double energy_scale = 0.0;       // for the divergence check
+  double critical_step = 0.0;      // min over the flexible bodies (0: none)
+  Timing timing;
+  mutable std::shared_ptr<const SceneGeometry> geometry;
+
+  // --- set-up -------------------------------------------------------------------------
+  void build_info();
+  double allowed_step() const { return scene.solver.dt_safety * critical_step; }
+  bool stability_bound_applies() const {
+    return critical_step > 0.0 && integrator->is_explicit() && !integrator->is_adaptive();
+  }
+  int substeps_for(double h) const {
+    if (!stability_bound_applies() || h <= allowed_step()) return 1;
+    return static_cast<int>(std::ceil(h / allowed_step() * (1 - 1e-12)));
+  }
+  std::string stability_message(double dt) const {
+    return "solver.dt = " + number(dt) + " s is above dt_safety * critical step = " + number(allowed_step()) +
+           " s (critical step " + number(critical_step) + " s) of the explicit " + integrator->name() +
+           " integrator";
+  }
+
+  // --- stepping -----------------------------------------------------------------------
+  void initialize();
+  void advance(double h);
+  void check_divergence();
+  Energies energies() const;
+  double kinetic_energy() const {
+    return 0.5 * (model->mass.array() * state.qd.array().square()).sum();
+  }
+  double elastic_energy() const {
+    double e = 0.0;
+    for (const auto& f : model->forces) e += f->potential_energy(state.q);
+    for (const auto& flex : model->flex_bodies) e += flex->potential_energy(state.q);
+    return e;
+  }
+  double gravity_energy() const { return -model->gravity_force.dot(state.q); }
+};
+
+// ---------------------------------------------------------------------------------------
+void Simulation::Impl::build_info() {
+  const SystemModel& m = *model;
+  info.bodies = static_cast<int>(m.bodies.size());
+  info.virtual_bodies = static_cast<int>(std::count_if(m.bodies.begin(), m.bodies.end(),
+                                                       [](const BodyDef& b) { return b.is_virtual; }));
+  info.joints = m.joints;
+  info.drivers = m.drivers;
+  info.force_elements = static_cast<int>(m.forces.size());
+  info.probes = static_cast<int>(m.probes.size());
+  info.flex_bodies = static_cast<int>(m.flex_bodies.size());
+  info.particles = 0;
+  info.bonds = 0;
+  critical_step = 0.0;
+  for (const auto& flex : m.flex_bodies) {
+    info.particles += flex->particle_count();
+    info.bonds += flex->bond_count();
+    const double crit = flex->critical_time_step();
+    if (crit > 0.0) critical_step = critical_step > 0.0 ? std::min(critical_step, crit) : crit;
+  }
+  info.coordinates = m.coordinate_count;
+  info.constraint_equations = m.constraint_rows;
+  info.redundant_equations = static_cast<int>(dynamics->dropped_rows().size());
+  info.redundant_constraints = dynamics->dropped_blocks();
+  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) - dynamics->active_rows();
+  info.critical_time_step = critical_step;
+
+  // what runs: only the parts this scene needs
+  auto& mods = info.active_modules;
+  mods.clear();
+  if (!m.bodies.empty()) mods.push_back("rigid_bodies");
+  if (m.gravity.norm() > 0.0 && m.gravity_force.norm() > 0.0) mods.push_back("gravity");
+  if (!m.forces.empty()) mods.push_back("force_elements");
+  if (dynamics->has_constraints()) mods.push_back("constraint_solver");
+  if (!m.flex_bodies.empty()) mods.push_back("pd_forces");
+  bool fracture = false, bond_damping = false, global_damping = false;
+  for (const auto& flex : m.flex_bodies) {
+    fracture |= flex->fracture_enabled();
+    bond_damping |= flex->bond_damping() != 0.0;
+    global_damping |= flex->global_damping() != 0.0;
+  }
+  if (fracture) mods.push_back("pd_fracture");
+  if (bond_damping) mods.push_back("pd_bond_damping");
+  if (global_damping) mods.push_back("pd_global_damping");
+  if (m.attachments > 0) mods.push_back("rigid_flexible_joints");
+  if (!m.prescribed.empty()) mods.push_back("prescribed_motion");
+
+  // foreseeable trouble
+  auto& w = info.warnings;
+  w.clear();
+  if (stability_bound_applies() && scene.solver.dt > allowed_step()) {
+    w.push_back(stability_message(scene.solver.dt) +
+                (scene.solver.auto_substep ? "; each step is split into " +
+                                                 std::to_string(substeps_for(scene.solver.dt)) + " sub-steps"
+                                           : "; lower solver.dt or set solver.auto_substep = true"));
+  }
+  for (size_t k = 0; k < m.flex_bodies.size(); ++k) {
+    const PdBody& flex = *m.flex_bodies[k];
+    for (const auto& text : flex.warnings()) w.push_back("flexible body '" + flex.name() + "': " + text);
+    if (flex.horizon() < 2.0 * flex.grid_spacing() * (1 - 1e-12)) {
+      w.push_back("flexible body '" + flex.name() + "': horizon " + number(flex.horizon()) +
+                  " is below 2 grid spacings; raise horizon_ratio to 3");
+    }
+  }
+  if (!info.redundant_constraints.empty()) {
+    std::string names;
+    for (const auto& n : info.redundant_constraints) names += (names.empty() ? "" : ", ") + n;
+    w.push_back(std::to_string(info.redundant_equations) + " redundant constraint equation(s) dropped from: " +
+                names);
+  }
+}
+
+void Simulation::Impl::initialize() {
+  state.q = model->q0;
+  state.qd = model->qd0;
+  state.work.setZero();
+  time = 0.0;
+  steps = 0;
+  fracture_energy = 0.0;
+  dynamics->impose_prescribed(0.0, state.q, state.qd);
+
+  // explicit integration of particles is bounded by their critical step
+  if (stability_bound_applies() && live.dt > allowed_step() && !scene.solver.auto_substep) {
+    throw NumericalError({"time step", 0, 0.0, stability_message(live.dt),
+                          "lower solver.dt below " + number(allowed_step()) +
+                              " or set solver.auto_substep = true"});
+  }
+
+  // consistent initial conditions: positions (Newton), then velocities
+  const CorrectionDef& c = scene.solver.correction;
+  const double tolerance = std::min(c.tolerance > 0.0 ? c.tolerance : 1e-10, 1e-10 * model->length_scale);
+  const Eigen::VectorXd q_declared = state.q, qd_declared = state.qd;
+  const double residual = dynamics->project_positions(0.0, state.q, tolerance, std::max(50, c.max_iterations));
+  if (residual > 1e3 * tolerance) {
+    throw NumericalError({"initial constraint violation", 0, 0.0,
+                          "the initial positions cannot be brought onto the constraints (max |Phi| = " +
+                              number(residual) + ", worst: '" + dynamics->worst_constraint(0.0, state.q) + "')",
+                          "correct the initial positions, joint points or lengths in the scene"});
+  }
+  dynamics->project_velocities(0.0, state.q, state.qd);
+  info.initial_position_correction = (state.q - q_declared).cwiseAbs().maxCoeff();
+  info.initial_velocity_correction = (state.qd - qd_declared).cwiseAbs().maxCoeff();
+  if (state.q.size() == 0) info.initial_position_correction = info.initial_velocity_correction = 0.0;
+
+  // energy reference for the balance and for the divergence check
+  initial_total = kinetic_energy() + gravity_energy() + elastic_energy();
+  double weight = 0.0;
+  for (int c2 = 0; c2 < model->coordinate_count; ++c2) weight += std::abs(model->gravity_force[c2]);
+  energy_scale = std::max(std::abs(kinetic_energy()) + std::abs(elastic_energy()) + weight * model->length_scale,
+                          1e-12);
+  integrator->reset();
+  initialized = true;
+}
+
+void Simulation::Impl::advance(double h) {
+  // keep the last good state: nothing non-finite leaves the solver
+  const OdeState saved = state;
+  const double saved_time = time;
+  const auto start = Clock::now();
+  const double forces0 = dynamics->force_seconds(), constraints0 = dynamics->constraint_seconds();
+  double fracture_seconds = 0.0;
+  try {
+    const int n = substeps_for(h);
+    const double t0 = time;
+    for (int k = 0; k < n; ++k) {
+      const double t_next = (k + 1 == n) ? t0 + h : t0 + h * (k + 1) / n;
+      integrator->step(*dynamics, time, t_next - time, state);
+      time = t_next;
+      dynamics->impose_prescribed(time, state.q, state.qd);
+
+      // coordinate projection after the step
+      const CorrectionDef& c = dynamics->correction();
+      if (c.method == CorrectionDef::Method::kProjection && dynamics->has_constraints()) {
+        const double residual = dynamics->project_positions(time, state.q, c.tolerance, c.max_iterations);
+        if (residual > 1e3 * c.tolerance) {
+          throw NumericalError({"constraint violation", -1, time,
+                                "the projection did not converge (max |Phi| = " + number(residual) + " in '" +
+                                    dynamics->worst_constraint(time, state.q) + "')",
+                                "lower solver.dt or raise solver.correction.max_iterations"});
+        }
+        dynamics->project_velocities(time, state.q, state.qd);
+        integrator->reset();
+      }
+
+      // fracture after each accepted step
+      const auto fracture_start = Clock::now();
+      for (auto& flex : model->flex_bodies) {
+        if (!flex->fracture_enabled()) continue;
+        const FractureUpdate update = flex->update_fracture(state.q);
+        fracture_energy += update.energy_released;
+        broken_bonds += update.bonds_broken;
+        if (update.bonds_broken > 0) integrator->reset();
+      }
+      fracture_seconds += since(fracture_start);
+    }
+    ++steps;
+    check_divergence();
+  } catch (const NumericalError& error) {
+    NumericalDiagnostic d = error.diagnostic();
+    if (d.step < 0) d.step = steps + 1;
+    if (d.time == 0.0) d.time = time;
+    state = saved;
+    time = saved_time;
+    integrator->reset();
+    throw NumericalError(d);
+  }
+  const double total = since(start);
+  const double forces = dynamics->force_seconds() - forces0, constraints = dynamics->constraint_seconds() - constraints0;
+  timing.forces += forces;
+  timing.constraints += constraints;
+  timing.fracture += fracture_seconds;
+  timing.integration += std::max(0.0, total - forces - constraints - fracture_seconds);
+}
+
+void Simulation::Impl::check_divergence() {
+  // non-finite state
+  if (!state.q.allFinite() || !state.qd.allFinite()) {
+    throw NumericalError({"state (positions / velocities)", steps, time, "a coordinate became NaN or infinite",
+                          "lower solver.dt, use a higher-order integrator or enable constraint correction"});
+  }
+  // constraint drift beyond a fraction of the model size
+  if (dynamics->has_constraints()) {
+    const double limit = std::max(kViolationFraction * model->length_scale, 1e3 * dynamics->correction().tolerance);
+    const double violation = dynamics->position_violation(time, state.q);
+    if (!(violation <= limit)) {
+      throw NumericalError({"constraint violation", steps, time,
+                            "max |Phi| = " + number(violation) + " exceeds " + number(limit) + " (in '" +
+                                dynamics->worst_constraint(time, state.q) + "')",
+                            "enable solver.correction (baumgarte or projection) or lower solver.dt"});
+    }
+  }
+  // kinetic energy far beyond what the model holds and what was fed in
+  const double fed = std::abs(state.work[kWorkExternal]) + std::abs(state.work[kWorkDriver]);
+  const double kinetic = kinetic_energy();
+  if (kinetic > kEnergyGrowth * (energy_scale + fed)) {
+    throw NumericalError({"kinetic energy", steps, time,
+                          "kinetic energy " + number(kinetic) + " J grew beyond " + number(kEnergyGrowth) +
+                              " times the energy available (" + number(energy_scale + fed) + " J)",
+                          "lower solver.dt (explicit stability) or check stiffnesses and loads"});
+  }
+}
+
+Energies Simulation::Impl::energies() const {
+  Energies e;
+  e.kinetic = kinetic_energy();
+  e.potential_gravity = gravity_energy();
+  e.potential_elastic = elastic_energy();
+  e.dissipated = state.work[kWorkDissipated];
+  e.fracture = fracture_energy;
+  e.external_work = state.work[kWorkExternal];
+  e.driver_work = state.work[kWorkDriver];
+  e.balance = e.kinetic + e.potential_gravity + e.potential_elastic + e.dissipated + e.fracture - e.external_work -
+              e.driver_work - initial_total;
+  return e;
+}
+
+// ---------------------------------------------------------------------------------------
+Simulation::Simulation(const SceneDef& scene) : impl_(std::make_unique<Impl>()) {
+  Impl& s = *impl_;
+  s.scene = scene;
+  if (!(scene.solver.dt > 0.0)) throw InputError({scene.path, 0, 0, "solver.dt"}, "solver.dt must be > 0");
+  if (!(scene.solver.dt_safety > 0.0)) {
+    throw InputError({scene.path, 0, 0, "solver.dt_safety"}, "solver.dt_safety must be > 0");
+  }
+  s.model = build_system_model(scene);
+  s.dynamics = std::make_unique<Dynamics>(*s.model);
+  s.dynamics->set_correction(scene.solver.correction);
+  s.dynamics->analyse(0.0);
+  try {
+    s.integrator = make_integrator(scene.solver.integrator, scene.solver);
+  } catch (const InputError& e) {
+    throw InputError({scene.path, 0, 0, "solver.integrator"}, e.detail());
+  }
+  s.live.integrator = s.integrator->name();
+  s.live.dt = scene.solver.dt;
+  s.live.correction = scene.solver.correction;
+  s.live.fracture = true;
+  for (const auto& flex : s.model->flex_bodies) {
+    s.live.bond_damping = flex->bond_damping();
+    s.live.global_damping = flex->global_damping();
+    s.live.fracture = flex->fracture_enabled();
+  }
+  s.state.q = s.model->q0;
+  s.state.qd = s.model->qd0;
+  s.build_info();
+}
+
+Simulation::~Simulation() = default;
+
+const SceneDef& Simulation::scene() const { return impl_->scene; }
+const ModelInfo& Simulation::info() const { return impl_->info; }
+double Simulation::time() const { return impl_->time; }
+long Simulation::step_count() const { return impl_->steps; }
+double Simulation::end_time() const { return impl_->scene.solver.end_time; }
+Simulation::Timing Simulation::timing() const { return impl_->timing; }
+
+void Simulation::initialize() { impl_->initialize(); }
+
+void Simulation::step() {
+  if (!impl_->initialized) impl_->initialize();
+  impl_->advance(impl_->live.dt);
+}
+
+void Simulation::advance_to(double t) {
+  Impl& s = *impl_;
+  if (!s.initialized) s.initialize();
+  // steps of dt; the last is shortened, and a remainder below round-off is absorbed
+  const double dt = s.live.dt;
+  while (s.time < t - 1e-12 * std::max(dt, std::abs(t))) {
+    const double remaining = t - s.time;
+    const double h = remaining <= dt * (1 + 1e-9) ? remaining : dt;
+    s.advance(h);
+  }
+}
+
+std::vector<std::string> Simulation::probe_columns() const {
+  std::vector<std::string> columns;
+  for (const auto& p : impl_->model->probes) {
+    for (const char* c : {"x", "y", "vx", "vy"}) columns.push_back("probe." + p.name + "." + c);
+    if (!p.is_particle()) columns.push_back("probe." + p.name + ".angle");
+  }
+  return columns;
+}
+
+Sample Simulation::sample() const {
+  Impl& s = *impl_;
+  Sample out;
+  out.time = s.time;
+  out.energies = s.energies();
+  out.violation_position = s.dynamics->position_violation(s.time, s.state.q);
+  out.violation_velocity = s.dynamics->velocity_violation(s.time, s.state.q, s.state.qd);
+  out.broken_bonds = s.broken_bonds;
+  // damage over all particles
+  std::vector<float> damage;
+  double sum = 0.0;
+  long count = 0;
+  for (const auto& flex : s.model->flex_bodies) {
+    flex->damage(damage);
+    for (float d : damage) {
+      sum += d;
+      out.max_damage = std::max(out.max_damage, static_cast<double>(d));
+    }
+    count += static_cast<long>(damage.size());
+  }
+  out.mean_damage = count ? sum / count : 0.0;
+  for (const auto& p : s.model->probes) {
+    if (p.is_particle()) {
+      const int c = p.particle_coordinate;
+      out.probe_values.insert(out.probe_values.end(), {s.state.q[c], s.state.q[c + 1], s.state.qd[c], s.state.qd[c + 1]});
+    } else {
+      const Vec2 x = p.point.position(s.state.q);
+      const Vec2 v = p.point.velocity(s.state.q, s.state.qd);
+      out.probe_values.insert(out.probe_values.end(), {x.x(), x.y(), v.x(), v.y(), p.point.angle(s.state.q)});
+    }
+  }
+  return out;
+}
+
+void Simulation::fill_snapshot(Snapshot& out) const {
+  Impl& s = *impl_;
+  const SystemModel& m = *s.model;
+  const Eigen::VectorXd& q = s.state.q;
+  const Eigen::VectorXd& qd = s.state.qd;
+
+  // the constant part, built once
+  if (!s.geometry) {
+    auto g = std::make_shared<SceneGeometry>();
+    g->scene_name = s.scene.name;
+    SceneGeometry::Body ground;
+    ground.name = "ground";
+    ground.ground = true;
+    g->bodies.push_back(ground);
+    for (const auto& b : m.bodies) g->bodies.push_back({b.name, false, b.is_virtual, b.shapes});
+    int first = 0;
+    g->particle_attached.clear();
+    for (const auto& flex : m.flex_bodies) {
+      g->flex_bodies.push_back({flex->name(), first, flex->particle_count(), flex->grid_spacing()});
+      first += flex->particle_count();
+      const auto& ref = flex->reference_positions();
+      for (int p = 0; p < flex->particle_count(); ++p) {
+        g->reference_x.push_back(static_cast<float>(ref[2 * p]));
+        g->reference_y.push_back(static_cast<float>(ref[2 * p + 1]));
+      }
+    }
+    g->particle_attached.assign(first, 0);
+    std::vector<int> coords;
+    for (const auto& block : m.constraints) {
+      if (block.origin != ConstraintBlock::Origin::kAttachment) continue;
+      coords.clear();
+      block.constraint->coordinates(coords);
+      for (int c : coords) {
+        if (c < m.rigid_coordinates) continue;
+        for (size_t f = 0; f < m.flex_bodies.size(); ++f) {
+          const int off = m.flex_bodies[f]->coordinate_offset();
+          if (c >= off && c < off + 2 * m.flex_bodies[f]->particle_count()) {
+            g->particle_attached[g->flex_bodies[f].first_particle + (c - off) / 2] = 1;
+          }
+        }
+      }
+    }
+    // bounds of the initial configuration
+    Vec2 lo(1e300, 1e300), hi(-1e300, -1e300);
+    auto grow = [&](const Vec2& p) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    };
+    for (size_t k = 0; k < m.bodies.size(); ++k) grow(m.q0.segment<2>(3 * k));
+    for (const auto& marker : m.markers) grow(marker.a.position(m.q0));
+    for (int c = m.rigid_coordinates; c + 1 < m.coordinate_count; c += 2) grow(m.q0.segment<2>(c));
+    if (lo.x() > hi.x()) lo = hi = Vec2::Zero();
+    g->bounds_min = lo;
+    g->bounds_max = hi;
+    s.geometry = g;
+  }
+  out.geometry = s.geometry;
+  out.time = s.time;
+  out.step = s.steps;
+
+  // rigid poses, ground first
+  out.bodies.assign(1, Snapshot::Pose{});
+  for (size_t k = 0; k < m.bodies.size(); ++k) out.bodies.push_back({q[3 * k], q[3 * k + 1], q[3 * k + 2]});
+
+  // particles
+  out.px.clear();
+  out.py.clear();
+  out.damage.clear();
+  out.displacement.clear();
+  out.speed.clear();
+  out.strain.clear();
+  out.bond_pairs.clear();
+  std::vector<float> buffer;
+  std::vector<std::pair<int, int>> pairs;
+  out.max_damage = 0.0;
+  int first = 0;
+  for (const auto& flex : m.flex_bodies) {
+    const int off = flex->coordinate_offset();
+    const auto& ref = flex->reference_positions();
+    for (int p = 0; p < flex->particle_count(); ++p) {
+      const double x = q[off + 2 * p], y = q[off + 2 * p + 1];
+      out.px.push_back(static_cast<float>(x));
+      out.py.push_back(static_cast<float>(y));
+      out.displacement.push_back(static_cast<float>(std::hypot(x - ref[2 * p], y - ref[2 * p + 1])));
+      out.speed.push_back(static_cast<float>(std::hypot(qd[off + 2 * p], qd[off + 2 * p + 1])));
+    }
+    flex->damage(buffer);
+    for (float d : buffer) out.max_damage = std::max(out.max_damage, static_cast<double>(d));
+    out.damage.insert(out.damage.end(), buffer.begin(), buffer.end());
+    flex->max_stretch(q, buffer);
+    out.strain.insert(out.strain.end(), buffer.begin(), buffer.end());
+    if (flex->bond_count() < kDrawnBondLimit) {
+      flex->bond_pairs(pairs, kDrawnBondLimit);
+      for (const auto& [i, j] : pairs) out.bond_pairs.emplace_back(first + i, first + j);
+    }
+    first += flex->particle_count();
+  }
+
+  // joints, drivers, attachments, springs, probes
+  out.markers.clear();
+  for (const auto& marker : m.markers) out.markers.push_back({marker.kind, marker.a.position(q), marker.b.position(q)});
+  out.springs.clear();
+  for (const auto& line : m.spring_lines) out.springs.push_back({line.a.position(q), line.b.position(q)});
+  out.probes.clear();
+  for (const auto& p : m.probes) {
+    const Vec2 at = p.is_particle() ? Vec2(q[p.particle_coordinate], q[p.particle_coordinate + 1]) : p.point.position(q);
+    out.probes.push_back({p.name, at});
+  }
+  out.energies = s.energies();
+  out.violation_position = s.dynamics->position_violation(s.time, q);
+  out.violation_velocity = s.dynamics->velocity_violation(s.time, q, qd);
+  out.broken_bonds = s.broken_bonds;
+}
+
+LiveSettings Simulation::settings() const { return impl_->live; }
+
+void Simulation::apply(const LiveSettings& settings) {
+  Impl& s = *impl_;
+  // a new integrator, time step or correction takes effect from the next step
+  std::unique_ptr<Integrator> next;
+  if (!settings.integrator.empty() && settings.integrator != s.integrator->name()) {
+    next = make_integrator(settings.integrator, s.scene.solver);
+  }
+  const double dt = settings.dt > 0.0 ? settings.dt : s.live.dt;
+  std::swap(next, s.integrator);
+  if (s.stability_bound_applies() && dt > s.allowed_step() && !s.scene.solver.auto_substep) {
+    const std::string message = s.stability_message(dt);
+    std::swap(next, s.integrator);  // keep the running configuration
+    throw InputError({"", 0, 0, "solver.dt"}, message + "; lower it below " + number(s.allowed_step()) +
+                                                  " or enable solver.auto_substep");
+  }
+  if (!s.integrator) std::swap(next, s.integrator);
+  s.live.integrator = s.integrator->name();
+  s.live.dt = dt;
+  s.live.correction = settings.correction;
+  s.dynamics->set_correction(settings.correction);
+  s.live.bond_damping = settings.bond_damping;
+  s.live.global_damping = settings.global_damping;
+  s.live.fracture = settings.fracture;
+  for (auto& flex : s.model->flex_bodies) {
+    flex->set_bond_damping(settings.bond_damping);
+    flex->set_global_damping(settings.global_damping);
+    flex->set_fracture_enabled(settings.fracture);
+  }
+  s.integrator->reset();
+  s.build_info();
+}
+
+void Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
+  Impl& s = *impl_;
+  const SystemModel& m = *s.model;
+  if (!spring) {
+    s.dynamics->set_mouse_spring(std::nullopt);
+    return;
+  }
+  MouseSpringForce force;
+  force.target = spring->target;
+  double grabbed = 0.0;
+  if (spring->body >= 0 && spring->body < static_cast<int>(m.bodies.size())) {
+    force.point = BodyPoint{spring->body, spring->local_point};
+    grabbed = m.bodies[spring->body].mass;
+  } else if (spring->particle >= 0) {
+    // snapshot order: the flexible bodies' particles concatenated
+    int first = 0;
+    for (const auto& flex : m.flex_bodies) {
+      if (spring->particle < first + flex->particle_count()) {
+        force.particle_coordinate = flex->coordinate_offset() + 2 * (spring->particle - first);
+        for (double pm : flex->masses()) grabbed += pm;
+        break;
+      }
+      first += flex->particle_count();
+    }
+    if (force.particle_coordinate < 0) return;
+  } else {
+    return;
+  }
+  // 2 Hz for the mass grabbed (the whole flexible body for a particle), 0.7 of critical damping
+  const double omega = 2.0 * kPi * 2.0;
+  if (grabbed <= 0.0) grabbed = 1.0;
+  force.stiffness = spring->stiffness > 0.0 ? spring->stiffness : grabbed * omega * omega;
+  force.damping = 1.4 * std::sqrt(force.stiffness * grabbed);
+  s.dynamics->set_mouse_spring(force);
+  s.integrator->reset();
+}
+
+}  // namespace periflex

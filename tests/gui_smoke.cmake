@@ -31,7 +31,7 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   if(EXISTS "${notched}")
     add_test(NAME gui_smoke_crack
              COMMAND ${gui_xvfb} ${gui_program} "${notched}" --frames 6 --screenshot "${gui_out}/crack.png"
-                     --script "show probes off@0; show markers off@0; show overlay off@0; speed max@0; run@0; wait 1.2e-3@2")
+                     --script "show probes off@0; show markers off@0; show overlay off@0; speed max@0; run@0; wait 0.8e-3@2")
     set_tests_properties(gui_smoke_crack PROPERTIES LABELS gui TIMEOUT 120 RESOURCE_LOCK xvfb
                          FIXTURES_SETUP gui_picture_crack)
     add_test(NAME gui_smoke_crack_picture COMMAND gui_png_check "${gui_out}/crack.png" --crack "${notched}")

@@ -35,13 +35,6 @@ double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-bool same_settings(const LiveSettings& a, const LiveSettings& b) {
-  return a.integrator == b.integrator && a.dt == b.dt && a.correction.method == b.correction.method &&
-         a.correction.alpha == b.correction.alpha && a.correction.beta == b.correction.beta &&
-         a.correction.tolerance == b.correction.tolerance &&
-         a.correction.max_iterations == b.correction.max_iterations && a.bond_damping == b.bond_damping &&
-         a.global_damping == b.global_damping && a.fracture == b.fracture;
-}
 
 }  // namespace
 
@@ -267,7 +260,7 @@ void GuiApp::evaluate_expectation(const ScriptAction& a) {
       LiveSettings expected = status_.settings;
       const std::string problem = set_live_parameter(expected, key, value);
       if (!problem.empty()) failure = problem;
-      else if (!same_settings(expected, status_.settings)) failure = key + " differs";
+      else if (!same_live_settings(expected, status_.settings)) failure = key + " differs";
     }
   } else {
     failure = "cannot check '" + what + "'";

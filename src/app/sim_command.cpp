@@ -25,6 +25,14 @@ bool parse_bool(const std::string& text, bool& out) {
 
 }  // namespace
 
+bool same_live_settings(const LiveSettings& a, const LiveSettings& b) {
+  return a.integrator == b.integrator && a.dt == b.dt && a.correction.method == b.correction.method &&
+         a.correction.alpha == b.correction.alpha && a.correction.beta == b.correction.beta &&
+         a.correction.tolerance == b.correction.tolerance &&
+         a.correction.max_iterations == b.correction.max_iterations && a.bond_damping == b.bond_damping &&
+         a.global_damping == b.global_damping && a.fracture == b.fracture;
+}
+
 const char* live_parameter_keys() {
   return "dt, integrator, bond_damping, global_damping, fracture, correction, alpha, beta, tolerance, "
          "max_iterations";

@@ -48,6 +48,9 @@ struct SimCommand {
 // Returns an empty string on success, else what is wrong (settings unchanged).
 std::string set_live_parameter(LiveSettings& settings, const std::string& key, const std::string& value);
 
+// True when every field of the two settings is equal.
+bool same_live_settings(const LiveSettings& a, const LiveSettings& b);
+
 // The live setting keys set_live_parameter accepts, for help texts.
 const char* live_parameter_keys();
 

@@ -120,7 +120,8 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   // build the new model completely before replacing the old one, so a failure keeps it
   const LiveSettings kept = model_->settings();
   std::unique_ptr<SteppedModel> fresh = factory_.build(scene);
-  if (keep_settings) fresh->apply(kept);
+  // live changes carry over; a model already on those settings is left alone
+  if (keep_settings && !same_live_settings(kept, fresh->settings())) fresh->apply(kept);
   model_ = std::move(fresh);
   ++generation_;
   numerical_error_.reset();

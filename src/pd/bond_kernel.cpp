@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -147,6 +148,53 @@ __attribute__((target("avx2"))) void elastic_rows_avx2(int begin, int end, const
   }
 }
 
+// damped_rows four bonds at a time, like elastic_rows_avx2 with the neighbours' velocities
+__attribute__((target("avx2"))) void damped_rows_avx2(int begin, int end, const int64_t* __restrict row,
+                                                      const int32_t* __restrict nbr,
+                                                      const double* __restrict inv_len0, const double* __restrict k,
+                                                      const double* __restrict pos, const double* __restrict vel,
+                                                      double eta_over_e, double* __restrict force) {
+  const __m256d one = _mm256_set1_pd(1.0), eta = _mm256_set1_pd(eta_over_e);
+  for (int i = begin; i < end; ++i) {
+    const double xi = pos[2 * i], yi = pos[2 * i + 1], vxi = vel[2 * i], vyi = vel[2 * i + 1];
+    const __m256d pxi = _mm256_set1_pd(xi), pyi = _mm256_set1_pd(yi);
+    const __m256d qxi = _mm256_set1_pd(vxi), qyi = _mm256_set1_pd(vyi);
+    __m256d ax = _mm256_setzero_pd(), ay = _mm256_setzero_pd();
+    int64_t b = row[i];
+    const int64_t last = row[i + 1];
+    for (; b + 4 <= last; b += 4) {
+      const __m128i twice_j = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(nbr + b)), 1);
+      const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), pxi);
+      const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), pyi);
+      const __m256d dvx = _mm256_sub_pd(_mm256_i32gather_pd(vel, twice_j, 8), qxi);
+      const __m256d dvy = _mm256_sub_pd(_mm256_i32gather_pd(vel + 1, twice_j, 8), qyi);
+      const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+      const __m256d inv_len = _mm256_div_pd(one, _mm256_sqrt_pd(r2));
+      const __m256d l0 = _mm256_loadu_pd(inv_len0 + b);
+      const __m256d dot = _mm256_add_pd(_mm256_mul_pd(dx, dvx), _mm256_mul_pd(dy, dvy));
+      const __m256d rate = _mm256_mul_pd(_mm256_mul_pd(dot, inv_len), l0);
+      const __m256d f = _mm256_mul_pd(
+          _mm256_loadu_pd(k + b),
+          _mm256_add_pd(_mm256_sub_pd(l0, inv_len), _mm256_mul_pd(_mm256_mul_pd(eta, rate), inv_len)));
+      ax = _mm256_add_pd(ax, _mm256_mul_pd(f, dx));
+      ay = _mm256_add_pd(ay, _mm256_mul_pd(f, dy));
+    }
+    double fx = lane_sum(ax), fy = lane_sum(ay);
+    for (; b < last; ++b) {
+      const int32_t j = nbr[b];
+      const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
+      const double dvx = vel[2 * j] - vxi, dvy = vel[2 * j + 1] - vyi;
+      const double inv_len = 1.0 / std::sqrt(dx * dx + dy * dy);
+      const double rate = (dx * dvx + dy * dvy) * inv_len * inv_len0[b];
+      const double f = k[b] * ((inv_len0[b] - inv_len) + eta_over_e * rate * inv_len);
+      fx += f * dx;
+      fy += f * dy;
+    }
+    force[2 * i] += fx;
+    force[2 * i + 1] += fy;
+  }
+}
+
 // row_max_stretch four bonds at a time; broken bonds (k = 0) count as -1
 __attribute__((target("avx2"))) void row_max_stretch_avx2(int begin, int end, const int64_t* __restrict row,
                                                           const int32_t* __restrict nbr,
@@ -182,12 +230,20 @@ __attribute__((target("avx2"))) void row_max_stretch_avx2(int begin, int end, co
   }
 }
 
-// true when the CPU runs AVX2 code (asked once)
-bool have_avx2() {
-  static const bool yes = __builtin_cpu_supports("avx2");
-  return yes;
-}
 #endif
+
+// set by set_vector_kernels_enabled
+std::atomic<bool> vector_kernels_enabled{true};
+
+// true when the AVX2 loops are built, allowed and the CPU runs them (the CPU is asked once)
+bool have_avx2() {
+#ifdef PERIFLEX_HAVE_AVX2_KERNEL
+  static const bool cpu = __builtin_cpu_supports("avx2");
+  return cpu && vector_kernels_enabled.load(std::memory_order_relaxed);
+#else
+  return false;
+#endif
+}
 
 // the stretch of bond b of particle i, computed the same way for both of its copies
 inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t b) {
@@ -197,6 +253,8 @@ inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t 
 }
 
 }  // namespace
+
+void set_vector_kernels_enabled(bool enabled) { vector_kernels_enabled = enabled; }
 
 void add_bond_forces(const BondStore& bonds, const double* pos, double* force) {
   for_blocks(bonds.particle_count(), [&](int begin, int end) {
@@ -215,6 +273,13 @@ void add_bond_forces(const BondStore& bonds, const double* pos, double* force) {
 void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
                             double* force) {
   for_blocks(bonds.particle_count(), [&](int begin, int end) {
+#ifdef PERIFLEX_HAVE_AVX2_KERNEL
+    if (have_avx2()) {
+      damped_rows_avx2(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
+                       bonds.stiffness.data(), pos, vel, eta_over_e, force);
+      return;
+    }
+#endif
     damped_rows(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
                 bonds.stiffness.data(), pos, vel, eta_over_e, force);
   });

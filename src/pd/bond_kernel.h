@@ -27,6 +27,10 @@ double bond_damping_power(const BondStore& bonds, const double* pos, const doubl
 long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const uint8_t* no_fail,
                            double& energy_released);
 
+// Whether the AVX2 row loops may be used when the CPU has them (default true). Turning them
+// off selects the portable loops, which agree to round-off; for tests and comparisons.
+void set_vector_kernels_enabled(bool enabled);
+
 // Largest stretch over the intact bonds of each particle (0 without intact bonds).
 void max_bond_stretch(const BondStore& bonds, const double* pos, float* out);
 

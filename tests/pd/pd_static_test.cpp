@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "pd/pd_body.h"
+#include "pd/bond_kernel.h"
 #include "pd/pd_material.h"
 #include "pd_test_support.h"
 
@@ -384,6 +385,81 @@ TEST(PdDamage, FractureOffNeverBreaks) {
   const Eigen::VectorXd q = affine_positions(*body, Eigen::Matrix2d::Identity() * 2e-3);
   EXPECT_EQ(body->update_fracture(q).bonds_broken, 0);
   EXPECT_EQ(body->broken_bond_count(), 0);
+}
+
+}  // namespace
+}  // namespace periflex
+
+namespace periflex {
+namespace {
+
+// A plate in a random state near the reference, for kernel comparisons.
+struct Perturbed {
+  std::unique_ptr<PdBody> body;
+  Eigen::VectorXd q, qd;
+};
+
+Perturbed perturbed_plate(double bond_damping, double global_damping) {
+  FlexBodyDef def = test::glass_plate(0.03, 0.02, 5e-4);
+  def.bond_damping = bond_damping;
+  def.global_damping = global_damping;
+  Perturbed p;
+  p.body = PdBody::build(def, 0);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> noise(0.0, 1e-6);
+  p.q = test::affine_positions(*p.body, Eigen::Matrix2d::Identity() * 1e-4);
+  p.qd.resize(p.q.size());
+  for (int k = 0; k < p.q.size(); ++k) {
+    p.q[k] += noise(rng);
+    p.qd[k] = noise(rng) * 1e3;
+  }
+  return p;
+}
+
+TEST(PdKernel, VectorAndPortableLoopsAgreeToRoundOff) {
+  // same formula, different summation order: 1e-12 of the largest force component
+  for (double eta : {0.0, 50.0}) {
+    Perturbed p = perturbed_plate(eta, 0.0);
+    Eigen::VectorXd g_vec = Eigen::VectorXd::Zero(p.q.size()), g_port = g_vec;
+    p.body->add_forces(p.q, p.qd, 0.0, g_vec);
+    set_vector_kernels_enabled(false);
+    p.body->add_forces(p.q, p.qd, 0.0, g_port);
+    set_vector_kernels_enabled(true);
+    EXPECT_LT((g_vec - g_port).cwiseAbs().maxCoeff(), 1e-12 * g_port.cwiseAbs().maxCoeff()) << eta;
+  }
+}
+
+TEST(PdDamping, DissipationPowerIsMinusTheDampingForcesPower) {
+  // the power the damping forces do on the particles (forces with damping minus forces
+  // without, dotted with qd) must be the negative of the reported dissipation; 1e-9 relative:
+  // round-off in the difference of two large force vectors
+  Perturbed p = perturbed_plate(50.0, 300.0);
+  Eigen::VectorXd g_damped = Eigen::VectorXd::Zero(p.q.size()), g_plain = g_damped;
+  p.body->add_forces(p.q, p.qd, 0.0, g_damped);
+  const double dissipated = p.body->dissipation_power(p.q, p.qd);
+  p.body->set_bond_damping(0.0);
+  p.body->set_global_damping(0.0);
+  p.body->add_forces(p.q, p.qd, 0.0, g_plain);
+  EXPECT_EQ(p.body->dissipation_power(p.q, p.qd), 0.0);
+  const double power = (g_damped - g_plain).dot(p.qd);
+  EXPECT_GT(dissipated, 0.0);
+  EXPECT_NEAR(-power / dissipated, 1.0, 1e-9);
+}
+
+TEST(PdElasticity, BondForcesAreTheGradientOfTheStrainEnergy) {
+  // central differences of potential_energy against add_forces on a few coordinates;
+  // 1e-5 relative: the O(h^2) error of the difference
+  Perturbed p = perturbed_plate(0.0, 0.0);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(p.q.size());
+  p.body->add_forces(p.q, Eigen::VectorXd::Zero(p.q.size()), 0.0, g);
+  const double h = 1e-9;
+  for (int k : {0, 1, 501, 1200, static_cast<int>(p.q.size()) - 1}) {
+    Eigen::VectorXd qp = p.q, qm = p.q;
+    qp[k] += h;
+    qm[k] -= h;
+    const double numeric = -(p.body->potential_energy(qp) - p.body->potential_energy(qm)) / (2 * h);
+    EXPECT_NEAR(numeric / g[k], 1.0, 1e-5) << k;
+  }
 }
 
 }  // namespace

@@ -1,13 +1,10 @@
 // The fixed-step explicit integrators: semi-implicit (symplectic) Euler, velocity Verlet and
-// classical Runge-Kutta 4. The adaptive Dormand-Prince pair lives in dormand_prince.cpp.
+// classical Runge-Kutta 4 (built by make_integrator in integrator.cpp).
 #include <array>
 
-#include "core/error.h"
 #include "solve/integrator.h"
 
 namespace periflex {
-
-std::unique_ptr<Integrator> make_dormand_prince(const SolverDef& solver);
 
 namespace {
 
@@ -99,16 +96,8 @@ class RungeKutta4 final : public Integrator {
 
 }  // namespace
 
-std::vector<std::string> integrator_names() { return {"symplectic_euler", "verlet", "rk4", "dopri54"}; }
-
-std::unique_ptr<Integrator> make_integrator(const std::string& name, const SolverDef& solver) {
-  if (name == "symplectic_euler") return std::make_unique<SymplecticEuler>();
-  if (name == "verlet") return std::make_unique<VelocityVerlet>();
-  if (name == "rk4") return std::make_unique<RungeKutta4>();
-  if (name == "dopri54") return make_dormand_prince(solver);
-  std::string choices;
-  for (const auto& n : integrator_names()) choices += (choices.empty() ? "" : ", ") + n;
-  throw InputError({"", 0, 0, "solver.integrator"}, "unknown integrator '" + name + "'; choose one of " + choices);
-}
+std::unique_ptr<Integrator> make_symplectic_euler() { return std::make_unique<SymplecticEuler>(); }
+std::unique_ptr<Integrator> make_velocity_verlet() { return std::make_unique<VelocityVerlet>(); }
+std::unique_ptr<Integrator> make_runge_kutta4() { return std::make_unique<RungeKutta4>(); }
 
 }  // namespace periflex

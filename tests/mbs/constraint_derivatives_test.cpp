@@ -92,7 +92,7 @@ void check_derivatives(const Constraint& c) {
 JointDef joint(JointDef::Kind kind) {
   JointDef def;
   def.kind = kind;
-  def.name = "j";
+  def.name = std::string("j");  // a bare literal here trips a false -Wrestrict warning
   def.point_i = Vec2(0.3, -0.2);
   def.point_j = Vec2(-0.4, 0.25);
   def.axis_i = Vec2(0.6, 0.8);
@@ -107,7 +107,7 @@ JointDef joint(JointDef::Kind kind) {
 DriverDef driver(DriverDef::Kind kind) {
   DriverDef def;
   def.kind = kind;
-  def.name = "d";
+  def.name = std::string("d");  // a bare literal here trips a false -Wrestrict warning
   def.point_i = Vec2(0.2, 0.1);
   def.point_j = Vec2(-0.3, 0.5);
   def.axis = Vec2(1.0, 2.0);

@@ -30,7 +30,7 @@ const Eigen::VectorXd kQ0 = Eigen::VectorXd::LinSpaced(kCoordinates, 0.1, 0.9);
 ForceDef spring(double k, double c, double actuator) {
   ForceDef def;
   def.kind = ForceDef::Kind::kSpringDamper;
-  def.name = "s";
+  def.name = std::string("s");  // a bare literal here trips a false -Wrestrict warning
   def.point_i = Vec2(0.2, -0.1);
   def.point_j = Vec2(-0.3, 0.4);
   def.stiffness = k;
@@ -43,7 +43,7 @@ ForceDef spring(double k, double c, double actuator) {
 ForceDef rotational(double k, double c) {
   ForceDef def;
   def.kind = ForceDef::Kind::kRotationalSpring;
-  def.name = "r";
+  def.name = std::string("r");  // a bare literal here trips a false -Wrestrict warning
   def.stiffness = k;
   def.damping = c;
   def.free_angle = 0.3;

@@ -2,6 +2,7 @@
 // x(t) = A cos(w t). The error ratio on halving dt shows the order of each method.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -62,7 +63,9 @@ TEST(Integrators, DormandPrinceMeetsItsTolerance) {
 TEST(Integrators, UnknownNameIsRejected) {
   EXPECT_THROW(Simulation(oscillator("leapfrog_9000", 1e-3)), InputError);
   const auto names = integrator_names();
-  EXPECT_EQ(names.size(), 4u);
+  for (const char* name : {"symplectic_euler", "verlet", "rk4", "dopri54"}) {
+    EXPECT_NE(std::find(names.begin(), names.end(), name), names.end()) << name;
+  }
 }
 
 TEST(Integrators, AdvanceToLandsExactlyOnTheRequestedTime) {

@@ -252,6 +252,6 @@ std::unique_ptr<Integrator> make_hht(double alpha) {
   return std::make_unique<Hht>(alpha);
 }
 
-std::unique_ptr<Integrator> make_hht(const SolverDef&) { return make_hht(kDefaultHhtAlpha); }
+std::unique_ptr<Integrator> make_hht(const SolverDef& solver) { return make_hht(solver.hht_alpha); }
 
 }  // namespace periflex

@@ -17,8 +17,8 @@
 //
 // Properties: second order; unconditionally stable for linear problems; numerical damping of
 // the highest frequencies grows as alpha goes from 0 (none: the trapezoidal rule) to -1/3
-// (spectral radius at infinity rho_inf = (1 + alpha) / (1 - alpha)); "hht" uses alpha = -0.1
-// (rho_inf = 0.82). Pick it when a stiff part (a fine or stiff peridynamic grid) forces the
+// (spectral radius at infinity rho_inf = (1 + alpha) / (1 - alpha)); solver.hht_alpha sets it,
+// default -0.1 (rho_inf = 0.82). Pick it when a stiff part (a fine or stiff peridynamic grid) forces the
 // explicit integrators to a critical step far below the time scale of interest and the
 // high-frequency content is not wanted; pick an explicit integrator when the fast waves
 // themselves matter (wave propagation, dynamic fracture), as large implicit steps filter them.
@@ -37,10 +37,10 @@ namespace periflex {
 // HHT-alpha with the given alpha in [-1/3, 0]. Throws std::invalid_argument outside that range.
 std::unique_ptr<Integrator> make_hht(double alpha);
 
-// The registered "hht": alpha = -0.1. (The solver definition has no alpha key yet.)
+// "hht" with the solver definition's hht_alpha.
 std::unique_ptr<Integrator> make_hht(const SolverDef& solver);
 
-// The alpha that "hht" uses.
+// The default of solver.hht_alpha.
 constexpr double kDefaultHhtAlpha = -0.1;
 
 }  // namespace periflex

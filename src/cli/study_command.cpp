@@ -1,0 +1,54 @@
+#include "cli/study_command.h"
+
+#include <CLI/CLI.hpp>
+#include <cstdio>
+
+#include "core/error.h"
+#include "study/refine_study.h"
+#include "study/study_def.h"
+#include "study/study_report.h"
+#include "study/study_runner.h"
+
+namespace periflex {
+
+CLI::App* add_study_subcommand(CLI::App& app, StudyOptions& o) {
+  auto* cmd = app.add_subcommand("study", "Error against run time for every method a study file names: "
+                                          "study.csv, study.md, study.png");
+  cmd->add_option("study", o.study_path, "Study file (TOML), e.g. scenes/studies/pendulum.toml")->required();
+  cmd->add_option("--out", o.out_dir, "Output directory (default out/study-<name>)");
+  cmd->add_option("--repeats", o.repeats, "Timed repeats per run (overrides the study's repeats)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_flag("--quiet", o.quiet, "Print only where the results went");
+  return cmd;
+}
+
+int study_command(const StudyOptions& options) {
+  try {
+    StudyDef study = load_study(options.study_path);
+    if (options.repeats > 0) study.repeats = options.repeats;
+    const std::string out_dir = options.out_dir.empty() ? "out/study-" + study.name : options.out_dir;
+    const StudyLog log = [&](const std::string& line) {
+      if (!options.quiet) std::printf("  %s\n", line.c_str());
+      std::fflush(stdout);
+    };
+    if (!options.quiet) std::printf("study %s\n", study.name.c_str());
+    const StudyResult result = study.mode == StudyDef::Mode::kRefine ? run_refine_study(study, log)
+                                                                      : run_study(study, log);
+    const StudyOutputs outputs = write_study_outputs(result, out_dir);
+    std::printf("wrote %s\nwrote %s\n", outputs.csv_path.c_str(), outputs.markdown_path.c_str());
+    if (!outputs.plot_path.empty()) std::printf("wrote %s\n", outputs.plot_path.c_str());
+    else std::printf("%s\n", outputs.plot_message.c_str());
+    return kExitOk;
+  } catch (const InputError& error) {
+    std::fprintf(stderr, "periflex: error: %s\n", error.what());
+    return kExitBadInput;
+  } catch (const NumericalError& error) {
+    std::fprintf(stderr, "periflex: numerical failure: %s\n", error.what());
+    return kExitNumerical;
+  } catch (const std::exception& error) {
+    std::fprintf(stderr, "periflex: error: %s\n", error.what());
+    return kExitOther;
+  }
+}
+
+}  // namespace periflex

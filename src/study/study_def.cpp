@@ -1,0 +1,159 @@
+#include "study/study_def.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "scene/toml_reader.h"
+
+namespace periflex {
+
+namespace {
+
+// A list of numbers under `key`, or a single number; every entry positive.
+std::vector<double> positive_list(TableReader& reader, std::string_view key) {
+  const toml::node* node = reader.node(key);
+  if (!node) return {};
+  const std::string dotted = reader.key_path(key);
+  std::vector<double> out;
+  if (node->is_array()) out = read_number_list(reader.context(), *node, dotted);
+  else out.push_back(read_number(reader.context(), *node, dotted, Sign::kPositive));
+  for (double v : out)
+    if (!(v > 0.0)) reader.fail(key, "every entry must be positive");
+  return out;
+}
+
+// A list of strings under `key`, or a single string.
+std::vector<std::string> string_list(TableReader& reader, std::string_view key) {
+  const toml::node* node = reader.node(key);
+  if (!node) return {};
+  std::vector<std::string> out;
+  if (const auto* s = node->as_string()) {
+    out.push_back(s->get());
+    return out;
+  }
+  const toml::array* array = node->as_array();
+  if (!array) reader.fail(key, "expected a string or an array of strings, found " + describe_type(*node));
+  for (const toml::node& item : *array) {
+    const auto* s = item.as_string();
+    if (!s) reader.fail(key, "expected strings only, found " + describe_type(item));
+    out.push_back(s->get());
+  }
+  return out;
+}
+
+}  // namespace
+
+int theoretical_order(const std::string& integrator) {
+  if (integrator == "symplectic_euler") return 1;
+  if (integrator == "verlet") return 2;
+  if (integrator == "rk4") return 4;
+  if (integrator == "dopri54") return 5;
+  if (integrator == "hht" || integrator == "generalized_alpha") return 2;
+  return 0;
+}
+
+bool is_adaptive_integrator(const std::string& integrator) { return integrator == "dopri54"; }
+
+StudyDef parse_study(const std::string& toml_text, const std::string& display_path) {
+  ReadContext context;
+  context.file = display_path;
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, display_path);
+  } catch (const toml::parse_error& e) {
+    SourceLocation where;
+    where.file = display_path;
+    where.line = static_cast<int>(e.source().begin.line);
+    where.column = static_cast<int>(e.source().begin.column);
+    throw InputError(where, std::string(e.description()));
+  }
+
+  StudyDef study;
+  study.path = display_path;
+  const std::filesystem::path file(display_path);
+  TableReader top(context, root, "", "the study file");
+
+  // [study]
+  const toml::table* table = top.optional_table("study");
+  if (!table) top.fail_missing("study", "a study file needs a [study] table");
+  TableReader s(context, *table, "study", "[study]");
+  study.name = s.string("name", file.stem().string());
+  const std::string scene = s.required_string("scene");
+  study.scene_path = std::filesystem::path(scene).is_absolute()
+                         ? scene : (file.parent_path() / scene).lexically_normal().string();
+  study.scene_overrides = string_list(s, "set");
+  study.mode = s.choice("mode", {"time", "refine"}, "time") == "refine" ? StudyDef::Mode::kRefine
+                                                                          : StudyDef::Mode::kTime;
+  study.reference = s.choice("reference", {"pendulum_exact", "slider_crank_exact", "converged"}, "converged");
+  study.reference_integrator = s.string("reference_integrator", "rk4");
+  study.reference_dt = s.number("reference_dt", 0.0, Sign::kNonNegative, true);
+  if (s.has("reference_correction"))
+    study.reference_correction = s.choice("reference_correction", {"none", "baumgarte", "projection"}, "none");
+  study.end_time = s.number("end_time", 0.0, Sign::kNonNegative, true);
+  study.compare_interval = s.number("compare_interval", 0.0, Sign::kNonNegative, true);
+  study.repeats = static_cast<int>(s.integer("repeats", 1, 1));
+  study.probes = string_list(s, "probes");
+  study.crack_direction = s.axis("crack_direction", Vec2::UnitX());
+  s.finish();
+
+  // [[method]]
+  if (const toml::array* methods = top.optional_array("method")) {
+    int index = 0;
+    for (const toml::node& node : *methods) {
+      const std::string path = "method." + std::to_string(index);
+      const toml::table* t = node.as_table();
+      if (!t) context.fail(&node, path, "[[method]] entries must be tables");
+      TableReader m(context, *t, path, "[[method]] " + std::to_string(index));
+      StudyMethodDef def;
+      def.where = m.where();
+      def.integrator = m.required_string("integrator");
+      def.dt = positive_list(m, "dt");
+      def.tolerances = positive_list(m, "tol");
+      def.atol_ratio = m.number("atol_ratio", 1e-3, Sign::kPositive);
+      def.corrections = string_list(m, "correction");
+      for (const std::string& c : def.corrections)
+        if (c != "none" && c != "baumgarte" && c != "projection")
+          m.fail("correction", "unknown correction '" + c + "' (none, baumgarte, projection)");
+      if (def.dt.empty() && def.tolerances.empty())
+        m.fail_missing("dt", "a method needs time steps (dt) or tolerances (tol)");
+      m.finish();
+      study.methods.push_back(std::move(def));
+      ++index;
+    }
+  }
+
+  // [refine]
+  if (const toml::table* refine = top.optional_table("refine")) {
+    TableReader r(context, *refine, "refine", "[refine]");
+    study.refine.quantity = r.choice("quantity", {"wave_speed", "cantilever_frequency"}, "wave_speed");
+    study.refine.flex_body = r.string("flex_body", "");
+    study.refine.grid_spacing = positive_list(r, "grid_spacing");
+    study.refine.horizon_ratio = positive_list(r, "horizon_ratio");
+    study.refine.probe = r.string("probe", "");
+    r.finish();
+  }
+  top.finish();
+
+  if (study.mode == StudyDef::Mode::kTime && study.methods.empty())
+    top.fail_missing("method", "a time study needs at least one [[method]]");
+  if (study.mode == StudyDef::Mode::kRefine && study.methods.size() > 1)
+    top.fail("method", "a refine study runs one method (one [[method]] with one dt)");
+  return study;
+}
+
+StudyDef load_study(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    SourceLocation where;
+    where.file = path;
+    throw InputError(where, "cannot read the study file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_study(text.str(), path);
+}
+
+}  // namespace periflex

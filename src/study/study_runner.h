@@ -1,0 +1,27 @@
+// Runs a study: every method of the grid against the reference, timing the solver alone.
+//
+//   StudyDef study = load_study("scenes/studies/pendulum.toml");
+//   StudyResult result = run_study(study, [](const std::string& line) { std::puts(line.c_str()); });
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "scene/scene_def.h"
+#include "study/study_def.h"
+#include "study/study_result.h"
+
+namespace periflex {
+
+using StudyLog = std::function<void(const std::string&)>;
+
+// Loads the study's scene (with its overrides), runs the reference and every grid point, and
+// fills rows and observed orders. A run that fails numerically becomes a row with status
+// "failed: ..." rather than ending the study. Throws InputError for a study the scene cannot
+// serve (unknown probe, steps that do not divide the comparison interval, ...).
+StudyResult run_study(const StudyDef& study, const StudyLog& log = {});
+
+// The scene of a study with its overrides and end time applied.
+SceneDef study_scene(const StudyDef& study);
+
+}  // namespace periflex

@@ -6,7 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev
+  libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev gnuplot-nox
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 if [[ "${1:-}" != "--compute-only" ]]; then

@@ -61,7 +61,11 @@ void SimWorker::start(bool run, double speed) {
 
 void SimWorker::stop() {
   if (!thread_.joinable()) return;
-  quitting_ = true;
+  {
+    // under the lock, so a simulation thread about to wait for recording space sees it
+    std::lock_guard<std::mutex> lock(record_mutex_);
+    quitting_ = true;
+  }
   send(SimCommand::make(SimCommand::Kind::kQuit));
   record_space_.notify_all();
   thread_.join();

@@ -31,6 +31,8 @@ constexpr long kDrawnBondLimit = 5000;
 // the model size, kinetic energy above this multiple of the energy the model can hold.
 constexpr double kViolationFraction = 0.05;
 constexpr double kEnergyGrowth = 1e3;
+// Steps between checks of the elastic energy (it costs about one force evaluation).
+constexpr long kElasticCheckInterval = 64;
 }  // namespace
 
 struct Simulation::Impl {
@@ -271,20 +273,47 @@ void Simulation::Impl::check_divergence() {
     const double limit = std::max(kViolationFraction * model->length_scale, 1e3 * dynamics->correction().tolerance);
     const double violation = dynamics->position_violation(time, state.q);
     if (!(violation <= limit)) {
+      // the remedy depends on the correction in use: none, gains too high for the step, or neither
+      const CorrectionDef& c = dynamics->correction();
+      const double gain_step = std::max(c.alpha, c.beta) * live.dt;
+      std::string remedy = "lower solver.dt; if the mechanism passes a toggle (singular) position, change its "
+                           "geometry or driver";
+      if (c.method == CorrectionDef::Method::kNone) {
+        remedy = "enable solver.correction (baumgarte or projection) or lower solver.dt";
+      } else if (c.method == CorrectionDef::Method::kBaumgarte && gain_step > 1.0) {
+        remedy = "lower solver.correction.alpha and beta (now max(alpha, beta) * dt = " + number(gain_step) +
+                 "; keep it below 1) or lower solver.dt";
+      }
       throw NumericalError({"constraint violation", steps, time,
                             "max |Phi| = " + number(violation) + " exceeds " + number(limit) + " (in '" +
                                 dynamics->worst_constraint(time, state.q) + "')",
-                            "enable solver.correction (baumgarte or projection) or lower solver.dt"});
+                            remedy});
     }
   }
-  // kinetic energy far beyond what the model holds and what was fed in
+  // energy far beyond what the model holds and what was fed in: the kinetic energy every step
+  // (cheap), the kinetic plus elastic energy every kElasticCheckInterval steps (an instability that
+  // grows the positions while the velocities stay small, e.g. Verlet exactly at its limit)
   const double fed = std::abs(state.work[kWorkExternal]) + std::abs(state.work[kWorkDriver]);
+  const double available = energy_scale + fed;
   const double kinetic = kinetic_energy();
-  if (kinetic > kEnergyGrowth * (energy_scale + fed)) {
-    throw NumericalError({"kinetic energy", steps, time,
-                          "kinetic energy " + number(kinetic) + " J grew beyond " + number(kEnergyGrowth) +
-                              " times the energy available (" + number(energy_scale + fed) + " J)",
-                          "lower solver.dt (explicit stability) or check stiffnesses and loads"});
+  const bool check_elastic = steps % kElasticCheckInterval == 0;
+  const double mechanical = check_elastic ? kinetic + elastic_energy() : kinetic;
+  if (mechanical > kEnergyGrowth * available) {
+    // explicit damping forces are themselves unstable once damping * dt is of order 1
+    std::string damped;
+    for (const auto& flex : model->flex_bodies) {
+      if (flex->global_damping() > 0.0 || flex->bond_damping() > 0.0) damped = flex->name();
+    }
+    std::string remedy = "lower solver.dt (explicit stability) or check stiffnesses and loads";
+    if (!damped.empty()) {
+      remedy += ", or lower flex_body." + damped + ".global_damping / bond_damping (explicit damping needs "
+                "global_damping * dt < 2)";
+    }
+    const std::string what = mechanical > kinetic ? "kinetic plus elastic energy " : "kinetic energy ";
+    throw NumericalError({mechanical > kinetic ? "energy" : "kinetic energy", steps, time,
+                          what + number(mechanical) + " J grew beyond " + number(kEnergyGrowth) +
+                              " times the energy available (" + number(available) + " J)",
+                          remedy});
   }
 }
 

@@ -148,6 +148,7 @@ class SceneBuilder {
     if (table == nullptr) return;
     TableReader in(context_, *table, "scene", "[scene]");
     scene_.name = in.string("name", default_name);
+    if (scene_.name.empty()) in.fail("name", "the scene name may not be empty (omit it to use the file name)");
     scene_.description = in.string("description", "");
     scene_.gravity = in.vec2("gravity", Vec2(0.0, -9.81));
     in.finish();
@@ -380,6 +381,7 @@ class SceneBuilder {
     probe.where = in.where();
     // a rigid body point or the particle of a flexible body nearest a reference point
     probe.body = in.required_string("body");
+    if (probe.body == "ground") in.fail("body", "a probe on the ground would never move; name a body");
     if (rigid_names_.count(probe.body) == 0 && flex_names_.count(probe.body) == 0)
       in.fail("body", "body '" + probe.body + "' is not declared (bodies: " + all_body_list() + ")");
     probe.point = in.vec2("point", Vec2::Zero());

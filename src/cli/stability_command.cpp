@@ -17,6 +17,7 @@ CLI::App* add_stability_subcommand(CLI::App& app, StabilityOptions& o) {
   command->add_option("--case", o.cases, "Run only cases whose name contains this text (repeatable)");
   command->add_flag("--list", o.list, "List the cases and exit");
   command->add_option("--threads", o.threads, "OpenMP threads of each case (default 1)")->check(CLI::Range(1, 1024));
+  command->add_option("--program", o.program, "The periflex executable each case runs (default: this one)");
   return command;
 }
 
@@ -39,7 +40,7 @@ int stability_command(const StabilityOptions& options) {
   if (cases.empty()) throw InputError({"command line", 0, 0, "--case"}, "no stability case matches");
 
   SuiteOptions suite;
-  suite.program = current_executable();
+  suite.program = options.program.empty() ? current_executable() : options.program;
   suite.out_dir = options.out_dir;
   suite.threads = options.threads;
 

@@ -17,6 +17,7 @@ struct StabilityOptions {
   std::vector<std::string> cases;     // run only cases whose name contains one of these
   bool list = false;                  // print the cases and exit
   int threads = 1;                    // OpenMP threads of each case
+  std::string program;                // the periflex run for each case; empty: this program
 };
 
 // Registers the subcommand and its options on `app`; `options` must outlive parsing.

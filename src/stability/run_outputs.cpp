@@ -172,17 +172,16 @@ RunOutputs read_run_outputs(const std::string& dir, int exit_code) {
   if (!series.rows.empty()) {
     out.last_time = times.back();
     out.final_violation = violations.back();
-    // potentials count from their initial values; the other accounts from zero
+    // every account has a natural zero except the gravity potential, which counts from its
+    // initial value (its zero is wherever the scene's origin happens to be)
     const auto& first = series.rows.front();
     for (const auto& row : series.rows) {
-      for (const char* name : {"kinetic", "dissipated", "fracture", "external_work", "driver_work"}) {
+      for (const char* name : {"kinetic", "potential_elastic", "dissipated", "fracture", "external_work", "driver_work"}) {
         const int c = series.column(name);
         if (c >= 0) out.energy_scale = std::max(out.energy_scale, std::abs(row[c]));
       }
-      for (const char* name : {"potential_gravity", "potential_elastic"}) {
-        const int c = series.column(name);
-        if (c >= 0) out.energy_scale = std::max(out.energy_scale, std::abs(row[c] - first[c]));
-      }
+      const int g = series.column("potential_gravity");
+      if (g >= 0) out.energy_scale = std::max(out.energy_scale, std::abs(row[g] - first[g]));
     }
   }
   out.energy_drift_rate = slope(times, balances);

@@ -34,8 +34,8 @@ struct RunOutputs {
   long rows = 0;
   double last_time = 0.0;
   // Largest |energy_balance| over the rows, and the scale it is measured against: the largest
-  // energy any one account (kinetic, potentials, dissipated, fracture, work) reached, so the
-  // relative error reads as "fraction of the energy that moved".
+  // energy any one account reached (kinetic, elastic, dissipated, fracture, work; gravity as its
+  // change from the start), so the relative error reads as "fraction of the energy in play".
   double energy_error = 0.0;
   double energy_scale = 0.0;
   double relative_energy_error() const;

@@ -37,6 +37,8 @@ struct StabilityCase {
   Expectation expect = Expectation::kStable;
   // Stopped / refused / warned: the message must contain one of these (case-insensitive).
   std::vector<std::string> message_terms;
+  // Stopped: the remedy (the text after "Try:") must name one of these parameters; empty: any.
+  std::vector<std::string> remedy_terms;
   // Stable: bounds, and why they are what they are.
   double max_relative_energy_error = std::numeric_limits<double>::infinity();
   double max_violation = std::numeric_limits<double>::infinity();

@@ -11,6 +11,10 @@
 #include "stability/stability_suite.h"
 
 namespace periflex {
+
+// Test names and failure messages show the case by name, not as bytes.
+void PrintTo(const StabilityCase& c, std::ostream* os) { *os << c.name; }
+
 namespace {
 
 SuiteOptions test_options() {

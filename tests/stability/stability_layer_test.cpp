@@ -140,10 +140,15 @@ TEST(Catalogue, NamesAreUniqueScenesExistAndExpectationsAreStated) {
     EXPECT_TRUE(names.insert(c.name).second) << "duplicate case " << c.name;
     EXPECT_TRUE(std::filesystem::exists(find_resource_root() + "/" + c.scene)) << c.name << ": " << c.scene;
     EXPECT_FALSE(c.description.empty()) << c.name;
-    if (c.expect == Expectation::kStable || c.expect == Expectation::kStableOrStopped)
+    if (c.expect == Expectation::kStable || c.expect == Expectation::kStableOrStopped) {
       EXPECT_FALSE(c.bounds_reason.empty()) << c.name << " states bounds without a reason";
-    if (c.expect != Expectation::kStable) EXPECT_FALSE(c.message_terms.empty()) << c.name;
-    if (c.run_steps > 0) EXPECT_TRUE(c.dt > 0 || c.dt_over_critical > 0) << c.name;
+    }
+    if (c.expect != Expectation::kStable) {
+      EXPECT_FALSE(c.message_terms.empty()) << c.name;
+    }
+    if (c.run_steps > 0) {
+      EXPECT_TRUE(c.dt > 0 || c.dt_over_critical > 0) << c.name;
+    }
     quick += c.quick ? 1 : 0;
     long_runs += c.long_run ? 1 : 0;
     EXPECT_FALSE(c.quick && c.long_run) << c.name << ": long runs are for the full suite";

@@ -41,47 +41,57 @@ void for_blocks(int n, Fn&& fn) {
 }
 
 // k (1/|xi| - 1/|y|) y = k s y/|y|: one square root and one division per bond, no branch
-// (a broken bond has k = 0)
+// (a broken bond has k = 0). With kTrack the largest stretch over the row's intact bonds
+// (-1 when none) goes to most[i] as a by-product, computed exactly as row_max_stretch does.
+template <bool kTrack>
 void elastic_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
                   const double* __restrict inv_len0, const double* __restrict k, const double* __restrict pos,
-                  double* __restrict force) {
+                  double* __restrict force, double* __restrict most) {
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
-    double fx = 0.0, fy = 0.0;
-#pragma omp simd reduction(+ : fx, fy)
+    double fx = 0.0, fy = 0.0, top = -1.0;
+#pragma omp simd reduction(+ : fx, fy) reduction(max : top)
     for (int64_t b = row[i]; b < row[i + 1]; ++b) {
       const int32_t j = nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
-      const double f = k[b] * (inv_len0[b] - 1.0 / std::sqrt(dx * dx + dy * dy));
+      const double len = std::sqrt(dx * dx + dy * dy);
+      const double f = k[b] * (inv_len0[b] - 1.0 / len);
       fx += f * dx;
       fy += f * dy;
+      if constexpr (kTrack) top = std::max(top, k[b] > 0.0 ? len * inv_len0[b] - 1.0 : -1.0);
     }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
+    if constexpr (kTrack) most[i] = top;
   }
 }
 
 // as elastic_rows, plus k eta/E ds/dt with ds/dt = e . (v_j - v_i) / |xi|, along e
+template <bool kTrack>
 void damped_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
                  const double* __restrict inv_len0, const double* __restrict k, const double* __restrict pos,
-                 const double* __restrict vel, double eta_over_e, double* __restrict force) {
+                 const double* __restrict vel, double eta_over_e, double* __restrict force,
+                 double* __restrict most) {
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     const double vxi = vel[2 * i], vyi = vel[2 * i + 1];
-    double fx = 0.0, fy = 0.0;
-#pragma omp simd reduction(+ : fx, fy)
+    double fx = 0.0, fy = 0.0, top = -1.0;
+#pragma omp simd reduction(+ : fx, fy) reduction(max : top)
     for (int64_t b = row[i]; b < row[i + 1]; ++b) {
       const int32_t j = nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
       const double dvx = vel[2 * j] - vxi, dvy = vel[2 * j + 1] - vyi;
-      const double inv_len = 1.0 / std::sqrt(dx * dx + dy * dy);
+      const double len = std::sqrt(dx * dx + dy * dy);
+      const double inv_len = 1.0 / len;
       const double rate = (dx * dvx + dy * dvy) * inv_len * inv_len0[b];
       const double f = k[b] * ((inv_len0[b] - inv_len) + eta_over_e * rate * inv_len);
       fx += f * dx;
       fy += f * dy;
+      if constexpr (kTrack) top = std::max(top, k[b] > 0.0 ? len * inv_len0[b] - 1.0 : -1.0);
     }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
+    if constexpr (kTrack) most[i] = top;
   }
 }
 
@@ -111,18 +121,32 @@ __attribute__((target("avx2"))) inline double lane_sum(__m256d v) {
   return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
 }
 
+// the stretch lanes of intact bonds (k > 0), -1 for broken ones
+__attribute__((target("avx2"))) inline __m256d intact_stretch(__m256d len, __m256d l0, __m256d k) {
+  const __m256d s = _mm256_sub_pd(_mm256_mul_pd(len, l0), _mm256_set1_pd(1.0));
+  return _mm256_blendv_pd(_mm256_set1_pd(-1.0), s, _mm256_cmp_pd(k, _mm256_setzero_pd(), _CMP_GT_OQ));
+}
+
+// the largest of four lanes
+__attribute__((target("avx2"))) inline double lane_max(__m256d v) {
+  alignas(32) double lanes[4];
+  _mm256_store_pd(lanes, v);
+  return std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+}
+
 // elastic_rows four bonds at a time: gather the neighbours' x and y by index 2j, then the
 // same arithmetic lane-wise; the last (row length mod 4) bonds run scalar
+template <bool kTrack>
 __attribute__((target("avx2"))) void elastic_rows_avx2(int begin, int end, const int64_t* __restrict row,
                                                        const int32_t* __restrict nbr,
                                                        const double* __restrict inv_len0,
                                                        const double* __restrict k, const double* __restrict pos,
-                                                       double* __restrict force) {
+                                                       double* __restrict force, double* __restrict most) {
   const __m256d one = _mm256_set1_pd(1.0);
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     const __m256d vxi = _mm256_set1_pd(xi), vyi = _mm256_set1_pd(yi);
-    __m256d ax = _mm256_setzero_pd(), ay = _mm256_setzero_pd();
+    __m256d ax = _mm256_setzero_pd(), ay = _mm256_setzero_pd(), top4 = _mm256_set1_pd(-1.0);
     int64_t b = row[i];
     const int64_t last = row[i + 1];
     for (; b + 4 <= last; b += 4) {
@@ -130,36 +154,44 @@ __attribute__((target("avx2"))) void elastic_rows_avx2(int begin, int end, const
       const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), vxi);
       const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), vyi);
       const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
-      const __m256d inv_len = _mm256_div_pd(one, _mm256_sqrt_pd(r2));
-      const __m256d f = _mm256_mul_pd(_mm256_loadu_pd(k + b), _mm256_sub_pd(_mm256_loadu_pd(inv_len0 + b), inv_len));
+      const __m256d len = _mm256_sqrt_pd(r2);
+      const __m256d l0 = _mm256_loadu_pd(inv_len0 + b), kb = _mm256_loadu_pd(k + b);
+      const __m256d f = _mm256_mul_pd(kb, _mm256_sub_pd(l0, _mm256_div_pd(one, len)));
       ax = _mm256_add_pd(ax, _mm256_mul_pd(f, dx));
       ay = _mm256_add_pd(ay, _mm256_mul_pd(f, dy));
+      if constexpr (kTrack) top4 = _mm256_max_pd(top4, intact_stretch(len, l0, kb));
     }
     double fx = lane_sum(ax), fy = lane_sum(ay);
+    double top = kTrack ? lane_max(top4) : -1.0;
     for (; b < last; ++b) {
       const int32_t j = nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
-      const double f = k[b] * (inv_len0[b] - 1.0 / std::sqrt(dx * dx + dy * dy));
+      const double len = std::sqrt(dx * dx + dy * dy);
+      const double f = k[b] * (inv_len0[b] - 1.0 / len);
       fx += f * dx;
       fy += f * dy;
+      if constexpr (kTrack) top = std::max(top, k[b] > 0.0 ? len * inv_len0[b] - 1.0 : -1.0);
     }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
+    if constexpr (kTrack) most[i] = top;
   }
 }
 
 // damped_rows four bonds at a time, like elastic_rows_avx2 with the neighbours' velocities
+template <bool kTrack>
 __attribute__((target("avx2"))) void damped_rows_avx2(int begin, int end, const int64_t* __restrict row,
                                                       const int32_t* __restrict nbr,
                                                       const double* __restrict inv_len0, const double* __restrict k,
                                                       const double* __restrict pos, const double* __restrict vel,
-                                                      double eta_over_e, double* __restrict force) {
+                                                      double eta_over_e, double* __restrict force,
+                                                      double* __restrict most) {
   const __m256d one = _mm256_set1_pd(1.0), eta = _mm256_set1_pd(eta_over_e);
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1], vxi = vel[2 * i], vyi = vel[2 * i + 1];
     const __m256d pxi = _mm256_set1_pd(xi), pyi = _mm256_set1_pd(yi);
     const __m256d qxi = _mm256_set1_pd(vxi), qyi = _mm256_set1_pd(vyi);
-    __m256d ax = _mm256_setzero_pd(), ay = _mm256_setzero_pd();
+    __m256d ax = _mm256_setzero_pd(), ay = _mm256_setzero_pd(), top4 = _mm256_set1_pd(-1.0);
     int64_t b = row[i];
     const int64_t last = row[i + 1];
     for (; b + 4 <= last; b += 4) {
@@ -169,29 +201,34 @@ __attribute__((target("avx2"))) void damped_rows_avx2(int begin, int end, const 
       const __m256d dvx = _mm256_sub_pd(_mm256_i32gather_pd(vel, twice_j, 8), qxi);
       const __m256d dvy = _mm256_sub_pd(_mm256_i32gather_pd(vel + 1, twice_j, 8), qyi);
       const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
-      const __m256d inv_len = _mm256_div_pd(one, _mm256_sqrt_pd(r2));
-      const __m256d l0 = _mm256_loadu_pd(inv_len0 + b);
+      const __m256d len = _mm256_sqrt_pd(r2);
+      const __m256d inv_len = _mm256_div_pd(one, len);
+      const __m256d l0 = _mm256_loadu_pd(inv_len0 + b), kb = _mm256_loadu_pd(k + b);
       const __m256d dot = _mm256_add_pd(_mm256_mul_pd(dx, dvx), _mm256_mul_pd(dy, dvy));
       const __m256d rate = _mm256_mul_pd(_mm256_mul_pd(dot, inv_len), l0);
       const __m256d f = _mm256_mul_pd(
-          _mm256_loadu_pd(k + b),
-          _mm256_add_pd(_mm256_sub_pd(l0, inv_len), _mm256_mul_pd(_mm256_mul_pd(eta, rate), inv_len)));
+          kb, _mm256_add_pd(_mm256_sub_pd(l0, inv_len), _mm256_mul_pd(_mm256_mul_pd(eta, rate), inv_len)));
       ax = _mm256_add_pd(ax, _mm256_mul_pd(f, dx));
       ay = _mm256_add_pd(ay, _mm256_mul_pd(f, dy));
+      if constexpr (kTrack) top4 = _mm256_max_pd(top4, intact_stretch(len, l0, kb));
     }
     double fx = lane_sum(ax), fy = lane_sum(ay);
+    double top = kTrack ? lane_max(top4) : -1.0;
     for (; b < last; ++b) {
       const int32_t j = nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
       const double dvx = vel[2 * j] - vxi, dvy = vel[2 * j + 1] - vyi;
-      const double inv_len = 1.0 / std::sqrt(dx * dx + dy * dy);
+      const double len = std::sqrt(dx * dx + dy * dy);
+      const double inv_len = 1.0 / len;
       const double rate = (dx * dvx + dy * dvy) * inv_len * inv_len0[b];
       const double f = k[b] * ((inv_len0[b] - inv_len) + eta_over_e * rate * inv_len);
       fx += f * dx;
       fy += f * dy;
+      if constexpr (kTrack) top = std::max(top, k[b] > 0.0 ? len * inv_len0[b] - 1.0 : -1.0);
     }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
+    if constexpr (kTrack) most[i] = top;
   }
 }
 
@@ -201,11 +238,10 @@ __attribute__((target("avx2"))) void row_max_stretch_avx2(int begin, int end, co
                                                           const double* __restrict inv_len0,
                                                           const double* __restrict k,
                                                           const double* __restrict pos, double* __restrict out) {
-  const __m256d one = _mm256_set1_pd(1.0), minus_one = _mm256_set1_pd(-1.0), zero = _mm256_setzero_pd();
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     const __m256d vxi = _mm256_set1_pd(xi), vyi = _mm256_set1_pd(yi);
-    __m256d most4 = minus_one;
+    __m256d most4 = _mm256_set1_pd(-1.0);
     int64_t b = row[i];
     const int64_t last = row[i + 1];
     for (; b + 4 <= last; b += 4) {
@@ -213,13 +249,10 @@ __attribute__((target("avx2"))) void row_max_stretch_avx2(int begin, int end, co
       const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), vxi);
       const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), vyi);
       const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
-      const __m256d s = _mm256_sub_pd(_mm256_mul_pd(_mm256_sqrt_pd(r2), _mm256_loadu_pd(inv_len0 + b)), one);
-      const __m256d intact = _mm256_cmp_pd(_mm256_loadu_pd(k + b), zero, _CMP_GT_OQ);
-      most4 = _mm256_max_pd(most4, _mm256_blendv_pd(minus_one, s, intact));
+      most4 = _mm256_max_pd(most4, intact_stretch(_mm256_sqrt_pd(r2), _mm256_loadu_pd(inv_len0 + b),
+                                                  _mm256_loadu_pd(k + b)));
     }
-    alignas(32) double lanes[4];
-    _mm256_store_pd(lanes, most4);
-    double most = std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
+    double most = lane_max(most4);
     for (; b < last; ++b) {
       const int32_t j = nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
@@ -256,32 +289,48 @@ inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t 
 
 void set_vector_kernels_enabled(bool enabled) { vector_kernels_enabled = enabled; }
 
-void add_bond_forces(const BondStore& bonds, const double* pos, double* force) {
+void add_bond_forces(const BondStore& bonds, const double* pos, double* force, double* row_max) {
+  const int64_t* row = bonds.row.data();
+  const int32_t* nbr = bonds.neighbor.data();
+  const double *l0 = bonds.inv_length.data(), *k = bonds.stiffness.data();
+  double* most = row_max;
   for_blocks(bonds.particle_count(), [&](int begin, int end) {
 #ifdef PERIFLEX_HAVE_AVX2_KERNEL
     if (have_avx2()) {
-      elastic_rows_avx2(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
-                        bonds.stiffness.data(), pos, force);
+      if (most)
+        elastic_rows_avx2<true>(begin, end, row, nbr, l0, k, pos, force, most);
+      else
+        elastic_rows_avx2<false>(begin, end, row, nbr, l0, k, pos, force, most);
       return;
     }
 #endif
-    elastic_rows(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
-                 bonds.stiffness.data(), pos, force);
+    if (most)
+      elastic_rows<true>(begin, end, row, nbr, l0, k, pos, force, most);
+    else
+      elastic_rows<false>(begin, end, row, nbr, l0, k, pos, force, most);
   });
 }
 
 void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
-                            double* force) {
+                            double* force, double* row_max) {
+  const int64_t* row = bonds.row.data();
+  const int32_t* nbr = bonds.neighbor.data();
+  const double *l0 = bonds.inv_length.data(), *k = bonds.stiffness.data();
+  double* most = row_max;
   for_blocks(bonds.particle_count(), [&](int begin, int end) {
 #ifdef PERIFLEX_HAVE_AVX2_KERNEL
     if (have_avx2()) {
-      damped_rows_avx2(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
-                       bonds.stiffness.data(), pos, vel, eta_over_e, force);
+      if (most)
+        damped_rows_avx2<true>(begin, end, row, nbr, l0, k, pos, vel, eta_over_e, force, most);
+      else
+        damped_rows_avx2<false>(begin, end, row, nbr, l0, k, pos, vel, eta_over_e, force, most);
       return;
     }
 #endif
-    damped_rows(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
-                bonds.stiffness.data(), pos, vel, eta_over_e, force);
+    if (most)
+      damped_rows<true>(begin, end, row, nbr, l0, k, pos, vel, eta_over_e, force, most);
+    else
+      damped_rows<false>(begin, end, row, nbr, l0, k, pos, vel, eta_over_e, force, most);
   });
 }
 
@@ -321,23 +370,26 @@ double bond_damping_power(const BondStore& bonds, const double* pos, const doubl
 }
 
 long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const uint8_t* no_fail,
-                           double& energy_released) {
+                           double& energy_released, const double* row_max) {
   const int n = bonds.particle_count();
   long directed = 0;
   double energy = 0.0;
-  // a vectorised pass finds the rows holding an intact bond beyond s0; only those are walked
-  // bond by bond. Both copies of a bond see the same stretch bit for bit, so both break here.
-  std::vector<double> most(n);
-  for_blocks(n, [&](int begin, int end) {
+  // a vectorised pass (or the force evaluation at the same positions) finds the rows holding an
+  // intact bond beyond s0; only those are walked bond by bond. Both copies of a bond see the same
+  // stretch bit for bit, so both rows are walked and both copies break here.
+  std::vector<double> computed;
+  if (!row_max) computed.resize(n);
+  const double* most = row_max ? row_max : computed.data();
+  if (!row_max) for_blocks(n, [&](int begin, int end) {
 #ifdef PERIFLEX_HAVE_AVX2_KERNEL
     if (have_avx2()) {
       row_max_stretch_avx2(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
-                           bonds.stiffness.data(), pos, most.data());
+                           bonds.stiffness.data(), pos, computed.data());
       return;
     }
 #endif
     row_max_stretch(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.inv_length.data(),
-                    bonds.stiffness.data(), pos, most.data());
+                    bonds.stiffness.data(), pos, computed.data());
   });
   for (int i = 0; i < n; ++i) {
     if (most[i] <= s0 || (no_fail && no_fail[i])) continue;

@@ -9,12 +9,15 @@
 
 namespace periflex {
 
-// force_i += sum_j k s e_ij with s = |y_j - y_i| / |xi| - 1 (elastic bond forces).
-void add_bond_forces(const BondStore& bonds, const double* pos, double* force);
+// force_i += sum_j k s e_ij with s = |y_j - y_i| / |xi| - 1 (elastic bond forces). When
+// row_max is given it receives, per particle, the largest stretch over its intact bonds
+// (-1 when none) as a by-product, which break_stretched_bonds can reuse at the same positions.
+void add_bond_forces(const BondStore& bonds, const double* pos, double* force,
+                     double* row_max = nullptr);
 
 // As add_bond_forces plus viscous bond damping: pair force k (s + eta_over_e * ds/dt).
 void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
-                            double* force);
+                            double* force, double* row_max = nullptr);
 
 // Strain energy sum over pairs of k |xi| s^2 / 2.
 double bond_strain_energy(const BondStore& bonds, const double* pos);
@@ -24,8 +27,9 @@ double bond_damping_power(const BondStore& bonds, const double* pos, const doubl
 
 // Breaks every intact bond with s > s0 unless an end is flagged in no_fail (may be null).
 // Returns the number of pairs broken; energy_released gets the strain energy they held.
+// row_max, when given, must come from a force evaluation at exactly these positions.
 long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const uint8_t* no_fail,
-                           double& energy_released);
+                           double& energy_released, const double* row_max = nullptr);
 
 // Whether the AVX2 row loops may be used when the CPU has them (default true). Turning them
 // off selects the portable loops, which agree to round-off; for tests and comparisons.

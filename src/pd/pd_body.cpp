@@ -56,6 +56,12 @@ struct PdBody::Impl {
   std::vector<AppliedLoad> loads;
   std::vector<std::string> warnings;
 
+  // the row maxima of the stretch, found by the last force evaluation, and the positions they
+  // belong to: update_fracture at the same positions (the usual case) skips its own pass
+  std::vector<double> stretch_cache_pos, stretch_cache_most;
+  bool stretch_cache_valid = false;
+  bool tracks_stretch() const { return fracture && std::isfinite(s0); }
+
   // Partial-volume factor of the neighbour at grid offset (a, b): without the correction 1
   // inside the horizon; with it the exact fraction of its cell inside the horizon disc
   // (cells whose centre lies beyond delta + dx/2 hold under 1% and are left out).
@@ -303,7 +309,10 @@ long PdBody::broken_bond_count() const { return impl_->broken_pairs; }
 bool PdBody::fracture_enabled() const { return impl_->fracture; }
 void PdBody::set_bond_damping(double value) { impl_->bond_damping = value; }
 void PdBody::set_global_damping(double value) { impl_->global_damping = value; }
-void PdBody::set_fracture_enabled(bool enabled) { impl_->fracture = enabled; }
+void PdBody::set_fracture_enabled(bool enabled) {
+  impl_->fracture = enabled;
+  impl_->stretch_cache_valid = false;
+}
 double PdBody::bond_damping() const { return impl_->bond_damping; }
 double PdBody::global_damping() const { return impl_->global_damping; }
 const std::vector<std::string>& PdBody::warnings() const { return impl_->warnings; }
@@ -338,15 +347,24 @@ double PdBody::critical_time_step() const {
 }
 
 void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) {
-  const Impl& m = *impl_;
+  Impl& m = *impl_;
   double* force = g.data() + m.offset;
   const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
 
+  // with fracture on, the kernel also leaves the row maxima of the stretch for update_fracture
+  double* most = nullptr;
+  if (m.tracks_stretch()) {
+    m.stretch_cache_most.resize(m.n());
+    m.stretch_cache_pos.assign(m.pos(q), m.pos(q) + 2 * m.n());
+    m.stretch_cache_valid = true;
+    most = m.stretch_cache_most.data();
+  }
+
   // bonds: the damped kernel only when bond damping is on (it needs velocities)
   if (eta_over_e > 0.0)
-    add_damped_bond_forces(m.bonds, m.pos(q), qd.data() + m.offset, eta_over_e, force);
+    add_damped_bond_forces(m.bonds, m.pos(q), qd.data() + m.offset, eta_over_e, force, most);
   else
-    add_bond_forces(m.bonds, m.pos(q), force);
+    add_bond_forces(m.bonds, m.pos(q), force, most);
 
   // mass-proportional damping -alpha m v
   if (m.global_damping > 0.0) {
@@ -402,7 +420,12 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
   FractureUpdate update;
   if (!m.fracture || !std::isfinite(m.s0)) return update;
   const uint8_t* no_fail = m.def.no_fail_regions.empty() ? nullptr : m.no_fail.data();
-  update.bonds_broken = break_stretched_bonds(m.bonds, m.pos(q), m.s0, no_fail, update.energy_released);
+  // reuse the maxima of the last force evaluation only if it saw exactly these positions
+  const bool cached = m.stretch_cache_valid &&
+                      std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
+  update.bonds_broken = break_stretched_bonds(m.bonds, m.pos(q), m.s0, no_fail, update.energy_released,
+                                              cached ? m.stretch_cache_most.data() : nullptr);
+  m.stretch_cache_valid = false;
   m.broken_pairs += update.bonds_broken;
   return update;
 }
@@ -446,7 +469,8 @@ void PdBody::strain_energy_density(const Eigen::VectorXd& q, std::vector<double>
 size_t PdBody::memory_bytes() const {
   const Impl& m = *impl_;
   const size_t per_particle_doubles = m.reference.capacity() + m.mass.capacity() + m.volume.capacity() +
-                                      m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity();
+                                      m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity() +
+                                      m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity();
   return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
          (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + m.no_fail.capacity();
 }

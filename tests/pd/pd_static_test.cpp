@@ -483,3 +483,29 @@ TEST(PdElasticity, BondForcesAreTheGradientOfTheStrainEnergy) {
 
 }  // namespace
 }  // namespace periflex
+
+namespace periflex {
+namespace {
+
+TEST(PdDamage, BreaksTheSameBondsWithOrWithoutTheForcePassesStretchMaxima) {
+  // update_fracture reuses the stretch maxima of a force evaluation at the same positions;
+  // the bonds it breaks must be exactly those a fresh stretch pass finds
+  FlexBodyDef def = test::glass_plate(0.03, 0.02, 5e-4);
+  def.material.critical_stretch = 1e-4;
+  auto with_forces = PdBody::build(def, 0), alone = PdBody::build(def, 0);
+  std::mt19937 rng(5);
+  std::normal_distribution<double> noise(0.0, 4e-8);
+  Eigen::VectorXd q = test::affine_positions(*alone, Eigen::Matrix2d::Identity() * 9e-5);
+  for (int k = 0; k < q.size(); ++k) q[k] += noise(rng);
+  Eigen::VectorXd g = Eigen::VectorXd::Zero(q.size());
+  with_forces->add_forces(q, Eigen::VectorXd::Zero(q.size()), 0.0, g);
+  const FractureUpdate a = with_forces->update_fracture(q), b = alone->update_fracture(q);
+  EXPECT_GT(a.bonds_broken, 0);
+  EXPECT_LT(a.bonds_broken, alone->bond_count());
+  EXPECT_EQ(a.bonds_broken, b.bonds_broken);
+  EXPECT_EQ(a.energy_released, b.energy_released);
+  EXPECT_EQ(with_forces->bonds().broken, alone->bonds().broken);
+}
+
+}  // namespace
+}  // namespace periflex

@@ -309,10 +309,14 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
   }
   if (io.WantCaptureMouse) return;
 
-  if (io.MouseWheel != 0.0f) camera_.zoom_at(std::pow(1.15, io.MouseWheel), mx, my, fb_width, fb_height);
+  if (io.MouseWheel != 0.0f) {
+    camera_.zoom_at(std::pow(1.15, io.MouseWheel), mx, my, fb_width, fb_height);
+    auto_frame_ = false;
+  }
   if (ImGui::IsMouseDown(ImGuiMouseButton_Right) && (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f)) {
     camera_.pan_pixels(io.MouseDelta.x * sx, io.MouseDelta.y * sy, fb_height);
     follow_ = -1;
+    auto_frame_ = false;
   }
   if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && worker_.has_snapshot()) {
     const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
@@ -396,8 +400,14 @@ int GuiApp::run() {
 
       // camera: fit when asked (and once there is something to fit), follow a body
       if (fit_pending_ && snap.geometry) {
-        camera_ = fit_camera_beside_panels(snap, fb_width, fb_height, kPanelWidth);
+        framing_ = start_framing(snap);
+        camera_ = fit_camera_beside_panels(framing_.shown, fb_width, fb_height, kPanelWidth);
         fit_pending_ = false;
+        auto_frame_ = true;
+      }
+      // until the user moves the view, it grows to keep what moves in sight
+      if (auto_frame_ && follow_ <= 0 && snap.geometry && grow_framing(framing_, snap)) {
+        camera_ = fit_camera_beside_panels(framing_.shown, fb_width, fb_height, kPanelWidth);
       }
       if (follow_ > 0 && follow_ < static_cast<int>(snap.bodies.size())) {
         camera_.center = Vec2(snap.bodies[follow_].x, snap.bodies[follow_].y);

@@ -12,9 +12,11 @@
 #include "app/gui_script.h"
 #include "app/plot_history.h"
 #include "app/sim_worker.h"
+#include "app/view_fit.h"
 #include "render/camera.h"
 #include "render/frame_writer.h"
 #include "render/renderer.h"
+#include "render/view.h"
 
 struct GLFWwindow;
 
@@ -76,6 +78,8 @@ class GuiApp {
   RenderSettings render_;
   Camera camera_;
   bool fit_pending_ = true;
+  bool auto_frame_ = false;         // the view grows with the scene until the user moves it
+  Framing framing_;                 // what the view frames while auto_frame_
   int follow_ = -1;                 // geometry body index, -1: none
   PlotHistory history_;
   long seen_generation_ = -1, seen_scene_generation_ = -1;

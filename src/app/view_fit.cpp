@@ -2,14 +2,27 @@
 
 #include <algorithm>
 
-#include "render/view.h"
-
 namespace periflex {
 
-Camera fit_camera_beside_panels(const Snapshot& snapshot, int width, int height, int left_inset) {
-  // bounds: the initial configuration, grown by where the particles are now
-  Bounds box = scene_bounds(snapshot);
+namespace {
+
+// everything drawn now: shapes at their poses, particles, markers, springs, probes
+Bounds drawn_bounds(const Snapshot& snapshot) {
+  Bounds box = snapshot_bounds(snapshot);
   box.add(particle_bounds(snapshot));
+  return box;
+}
+
+}  // namespace
+
+Bounds framing_bounds(const Snapshot& snapshot) {
+  Bounds box = scene_bounds(snapshot);
+  box.add(drawn_bounds(snapshot));
+  return box;
+}
+
+Camera fit_camera_beside_panels(const Bounds& bounds, int width, int height, int left_inset) {
+  Bounds box = bounds;
   if (box.empty()) box.add(Vec2::Zero());
   // a point or a line still needs a visible box
   const double extent = std::max({box.hi.x() - box.lo.x(), box.hi.y() - box.lo.y(), 1e-6});
@@ -28,6 +41,30 @@ Camera fit_camera_beside_panels(const Snapshot& snapshot, int width, int height,
   const double world_per_pixel = camera.view_height / std::max(1, height);
   camera.center.x() -= 0.5 * inset * world_per_pixel;
   return camera;
+}
+
+Camera fit_camera_beside_panels(const Snapshot& snapshot, int width, int height, int left_inset) {
+  return fit_camera_beside_panels(framing_bounds(snapshot), width, height, left_inset);
+}
+
+Framing start_framing(const Snapshot& snapshot) {
+  Framing f;
+  f.seen = framing_bounds(snapshot);
+  f.shown = f.seen;
+  return f;
+}
+
+bool grow_framing(Framing& framing, const Snapshot& snapshot, double margin) {
+  const Bounds now = drawn_bounds(snapshot);
+  if (now.empty()) return false;
+  framing.seen.add(now);
+  if (framing.shown.contains(now)) return false;
+  // room to move before the next growth, measured on what was seen (so margins never compound)
+  const Vec2 pad = margin * (framing.seen.hi - framing.seen.lo);
+  framing.shown = framing.seen;
+  framing.shown.lo -= pad;
+  framing.shown.hi += pad;
+  return true;
 }
 
 }  // namespace periflex

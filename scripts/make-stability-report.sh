@@ -5,7 +5,8 @@
 #   scripts/make-stability-report.sh --quick    the quick subset that ctest runs (a few minutes)
 #
 # Environment: BUILD_DIR (default build-stability-report), PERIFLEX (use this binary instead of
-# building one), OUT (default out/stability).
+# building one), PROGRAM (the periflex each case runs; default PERIFLEX itself), OUT (default
+# out/stability).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -22,7 +23,9 @@ fi
 
 # the suite's exit code says whether every case behaved as expected; the report is written either way
 status=0
-"$PERIFLEX" stability "${mode[@]}" --out "$out" || status=$?
+program=()
+if [[ -n "${PROGRAM:-}" ]]; then program=(--program "$PROGRAM"); fi
+"$PERIFLEX" stability "${mode[@]}" "${program[@]}" --out "$out" || status=$?
 if [[ ! -f "$out/stability.md" ]]; then
   echo "make-stability-report: the suite wrote no table (exit $status)" >&2
   exit 1

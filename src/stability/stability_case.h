@@ -44,6 +44,7 @@ struct StabilityCase {
   double max_violation = std::numeric_limits<double>::infinity();
   std::string bounds_reason;
   std::string requires_integrator;   // skipped when integrator_names() lacks it
+  bool requires_rendering = false;   // skipped when the program was built without the off-screen renderer
   double timeout_seconds = 120.0;
   bool quick = false;                // part of `periflex stability --quick` and of ctest
   bool long_run = false;             // report drift per unit time

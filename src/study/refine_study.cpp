@@ -107,7 +107,8 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
   const double frequency = beta_l * beta_l / (2.0 * kPi * beam.length * beam.length) * beam.depth * c /
                            std::sqrt(12.0);
   const double expected = wave ? c : frequency;
-  const double extreme_at = wave ? 2.0 * beam.length / c : 0.5 / frequency;
+  // fixed-free bar: the stop wave from the clamp reaches the free end at L / c and reverses the tip
+  const double extreme_at = wave ? beam.length / c : 0.5 / frequency;
   result.quantity = study.refine.quantity;
   result.quantity_unit = wave ? "m/s" : "Hz";
   result.reference_description = wave ? "wave speed sqrt(E / rho) = " + format_g(c) + " m/s, L = " + format_g(beam.length) + " m"
@@ -178,7 +179,7 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
         if (t_extreme <= 0.0) {
           row.status = "failed: no extreme of the probe signal";
         } else {
-          row.measured = wave ? 2.0 * beam.length / t_extreme : 0.5 / t_extreme;
+          row.measured = wave ? beam.length / t_extreme : 0.5 / t_extreme;
           row.error_max_rel = std::abs(row.measured - expected) / expected;
           row.error_max = std::abs(row.measured - expected);
         }

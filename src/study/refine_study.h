@@ -2,8 +2,9 @@
 // the particle grid is refined and as the horizon ratio m = delta / dx changes.
 //
 //   wave_speed            a bar clamped at one end, every particle given the same initial axial
-//                         velocity: the tip reaches its first extreme at t = 2 L / c, against
-//                         c = sqrt(E / rho) (plane stress, thin strip).
+//                         velocity: the wave that stops the bar at the clamp reaches the free end
+//                         at t = L / c and reverses the tip there, against c = sqrt(E / rho)
+//                         (plane stress, thin strip).
 //   cantilever_frequency  a cantilever released from rest under gravity: its tip reaches its
 //                         lowest point after half a period of the first bending mode, against the
 //                         Euler-Bernoulli f1 = (1.8751^2 / (2 pi L^2)) sqrt(E I / (rho A)).

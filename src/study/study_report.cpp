@@ -98,7 +98,6 @@ std::string refine_markdown(const StudyResult& result) {
 
 std::string refine_gnuplot_script(const StudyResult& result, const std::string& csv_path,
                                   const std::string& png_path) {
-  if (is_refine(result)) return refine_gnuplot_script(result, csv_path, png_path);
   std::ostringstream out;
   out << "set terminal pngcairo size 900,640 enhanced font 'sans,11'\n";
   out << "set output '" << png_path << "'\n";
@@ -106,7 +105,7 @@ std::string refine_gnuplot_script(const StudyResult& result, const std::string& 
   out << "set format x '10^{%L}'\nset format y '10^{%L}'\n";
   out << "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\nset key outside right top\n";
   out << "set xlabel 'wall time [s]'\nset ylabel 'relative error of " << result.quantity << "'\n";
-  out << "set title '" << result.study.name << ": error against run time as the grid is refined'\n";
+  out << "set title '" << result.study.name << ": error against run time as the grid is refined' noenhanced\n";
   std::vector<double> ratios;
   for (const StudyRow& r : result.rows)
     if (std::find(ratios.begin(), ratios.end(), r.horizon_ratio) == ratios.end()) ratios.push_back(r.horizon_ratio);
@@ -114,7 +113,7 @@ std::string refine_gnuplot_script(const StudyResult& result, const std::string& 
   for (size_t s = 0; s < ratios.size(); ++s)
     out << (s ? ", \\\n     " : "") << "'" << csv_path << "' every ::1 using (abs($2 - " << num(ratios[s])
         << ") < 1e-9 && strcol(10) eq 'ok' ? $8 : NaN):7 with linespoints lw 2 pt " << (5 + s % 9)
-        << " title 'm = " << short_num(ratios[s]) << "'";
+        << " title 'm = " << short_num(ratios[s]) << "' noenhanced";
   out << "\n";
   return out.str();
 }
@@ -165,6 +164,8 @@ std::string study_markdown(const StudyResult& result) {
     if (result.has_fracture) out << " " << short_num(r.crack_tip_error) << " | " << short_num(r.broken_bond_error) << " |";
     out << " " << r.steps << " | " << short_num(r.wall_time) << " |\n";
   }
+  out << "\nFastest run to reach a relative error of 1e-3 and of 1e-6:\n\n"
+      << "| study | 1e-3 | 1e-6 |\n|---|---|---|\n" << study_guidance_row(result);
   out << "\nObserved order (least-squares slope of log max error against log dt, or log tol for "
          "adaptive runs):\n\n";
   out << "| integrator | correction | observed | theory | points |\n|---|---|---|---|---|\n";
@@ -174,6 +175,27 @@ std::string study_markdown(const StudyResult& result) {
         << " | " << o.points << " |\n";
   }
   return out.str();
+}
+
+std::string study_guidance_row(const StudyResult& result) {
+  // the fastest successful run whose relative error reaches each target
+  const auto fastest = [&](double target) -> std::string {
+    const StudyRow* best = nullptr;
+    for (const StudyRow& r : result.rows)
+      if (r.ok() && r.error_max_rel <= target && (!best || r.wall_time < best->wall_time)) best = &r;
+    if (!best) return "none of the runs";
+    std::ostringstream out;
+    if (is_refine(result)) {
+      out << "dx = " << short_num(best->grid_spacing) << ", m = " << short_num(best->horizon_ratio);
+    } else {
+      out << best->integrator << " / " << best->correction;
+      if (best->tol > 0) out << ", tol " << short_num(best->tol);
+      else out << ", dt " << short_num(best->dt);
+    }
+    out << " (" << short_num(best->wall_time) << " s)";
+    return out.str();
+  };
+  return "| " + result.study.name + " | " + fastest(1e-3) + " | " + fastest(1e-6) + " |\n";
 }
 
 std::string study_gnuplot_script(const StudyResult& result, const std::string& csv_path,
@@ -189,7 +211,7 @@ std::string study_gnuplot_script(const StudyResult& result, const std::string& c
   out << "set key outside right top\n";
   out << "set xlabel 'wall time [s] (solver only, median of " << result.study.repeats << ")'\n";
   out << "set ylabel 'max probe position error / excursion'\n";
-  out << "set title '" << result.study.name << ": error against run time'\n";
+  out << "set title '" << result.study.name << ": error against run time' noenhanced\n";
   // one line per (integrator, correction) series, read from the CSV by column match
   std::vector<std::pair<std::string, std::string>> series;
   std::set<std::pair<std::string, std::string>> seen;
@@ -201,7 +223,7 @@ std::string study_gnuplot_script(const StudyResult& result, const std::string& c
     out << (s ? ", \\\n     " : "") << "'" << csv_path << "' every ::1 using "
         << "((strcol(1) eq '" << integrator << "' && strcol(2) eq '" << correction
         << "' && strcol(16) eq 'ok') ? $14 : NaN):7 with linespoints lw 2 pt " << (5 + s % 9) << " title '"
-        << series_label(integrator, correction) << "'";
+        << series_label(integrator, correction) << "' noenhanced";
   }
   out << "\n";
   return out.str();
@@ -218,6 +240,7 @@ StudyOutputs write_study_outputs(const StudyResult& result, const std::string& o
   outputs.markdown_path = (dir / "study.md").string();
   write_text(outputs.csv_path, study_csv(result));
   write_text(outputs.markdown_path, study_markdown(result));
+  write_text(dir / "guidance.md", study_guidance_row(result));
 
   const fs::path script = dir / "study.gp";
   const fs::path png = dir / "study.png";

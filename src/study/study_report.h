@@ -15,6 +15,9 @@ const std::vector<std::string>& refine_csv_columns();
 
 std::string study_csv(const StudyResult& result);
 std::string study_markdown(const StudyResult& result);
+// One row of the guidance table: "| study | fastest run to 1e-3 | fastest run to 1e-6 |" (relative
+// error; written to guidance.md beside study.md).
+std::string study_guidance_row(const StudyResult& result);
 // The gnuplot script drawing `png_path` from `csv_path`.
 std::string study_gnuplot_script(const StudyResult& result, const std::string& csv_path,
                                  const std::string& png_path);

@@ -42,7 +42,8 @@ void for_blocks(int n, Fn&& fn) {
 
 // k (1/|xi| - 1/|y|) y = k s y/|y|: one square root and one division per bond, no branch
 // (a broken bond has k = 0). With kTrack the largest stretch over the row's intact bonds
-// (-1 when none) goes to most[i] as a by-product, computed exactly as row_max_stretch does.
+// (at most 0 when none) goes to most[i] as a by-product; the stretch itself is computed exactly
+// as break_stretched_bonds computes it.
 template <bool kTrack>
 void elastic_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
                   const double* __restrict inv_len0, const double* __restrict k, const double* __restrict pos,
@@ -114,6 +115,14 @@ void row_max_stretch(int begin, int end, const int64_t* __restrict row, const in
 }
 
 #ifdef PERIFLEX_HAVE_AVX2_KERNEL
+// four doubles at base[idx[k]]. The merge source is an explicit zero: with the plain intrinsic
+// GCC may pick a register still holding last iteration's result as the (unused) merge source,
+// which chains every gather to the previous square root and division and runs 3-4x slower.
+__attribute__((target("avx2"))) inline __m256d gather(const double* base, __m128i idx) {
+  const __m256d all = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, idx, all, 8);
+}
+
 // sum of the four lanes, in a fixed order
 __attribute__((target("avx2"))) inline double lane_sum(__m256d v) {
   const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1);
@@ -121,10 +130,10 @@ __attribute__((target("avx2"))) inline double lane_sum(__m256d v) {
   return _mm_cvtsd_f64(_mm_add_sd(pair, _mm_unpackhi_pd(pair, pair)));
 }
 
-// the stretch lanes of intact bonds (k > 0), -1 for broken ones
+// the stretch lanes of intact bonds (k > 0), 0 for broken ones (a bitwise and with the mask)
 __attribute__((target("avx2"))) inline __m256d intact_stretch(__m256d len, __m256d l0, __m256d k) {
   const __m256d s = _mm256_sub_pd(_mm256_mul_pd(len, l0), _mm256_set1_pd(1.0));
-  return _mm256_blendv_pd(_mm256_set1_pd(-1.0), s, _mm256_cmp_pd(k, _mm256_setzero_pd(), _CMP_GT_OQ));
+  return _mm256_and_pd(s, _mm256_cmp_pd(k, _mm256_setzero_pd(), _CMP_GT_OQ));
 }
 
 // the largest of four lanes
@@ -151,8 +160,8 @@ __attribute__((target("avx2"))) void elastic_rows_avx2(int begin, int end, const
     const int64_t last = row[i + 1];
     for (; b + 4 <= last; b += 4) {
       const __m128i twice_j = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(nbr + b)), 1);
-      const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), vxi);
-      const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), vyi);
+      const __m256d dx = _mm256_sub_pd(gather(pos, twice_j), vxi);
+      const __m256d dy = _mm256_sub_pd(gather(pos + 1, twice_j), vyi);
       const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
       const __m256d len = _mm256_sqrt_pd(r2);
       const __m256d l0 = _mm256_loadu_pd(inv_len0 + b), kb = _mm256_loadu_pd(k + b);
@@ -196,10 +205,10 @@ __attribute__((target("avx2"))) void damped_rows_avx2(int begin, int end, const 
     const int64_t last = row[i + 1];
     for (; b + 4 <= last; b += 4) {
       const __m128i twice_j = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(nbr + b)), 1);
-      const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), pxi);
-      const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), pyi);
-      const __m256d dvx = _mm256_sub_pd(_mm256_i32gather_pd(vel, twice_j, 8), qxi);
-      const __m256d dvy = _mm256_sub_pd(_mm256_i32gather_pd(vel + 1, twice_j, 8), qyi);
+      const __m256d dx = _mm256_sub_pd(gather(pos, twice_j), pxi);
+      const __m256d dy = _mm256_sub_pd(gather(pos + 1, twice_j), pyi);
+      const __m256d dvx = _mm256_sub_pd(gather(vel, twice_j), qxi);
+      const __m256d dvy = _mm256_sub_pd(gather(vel + 1, twice_j), qyi);
       const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
       const __m256d len = _mm256_sqrt_pd(r2);
       const __m256d inv_len = _mm256_div_pd(one, len);
@@ -232,7 +241,7 @@ __attribute__((target("avx2"))) void damped_rows_avx2(int begin, int end, const 
   }
 }
 
-// row_max_stretch four bonds at a time; broken bonds (k = 0) count as -1
+// row_max_stretch four bonds at a time; broken bonds (k = 0) count as 0
 __attribute__((target("avx2"))) void row_max_stretch_avx2(int begin, int end, const int64_t* __restrict row,
                                                           const int32_t* __restrict nbr,
                                                           const double* __restrict inv_len0,
@@ -246,8 +255,8 @@ __attribute__((target("avx2"))) void row_max_stretch_avx2(int begin, int end, co
     const int64_t last = row[i + 1];
     for (; b + 4 <= last; b += 4) {
       const __m128i twice_j = _mm_slli_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(nbr + b)), 1);
-      const __m256d dx = _mm256_sub_pd(_mm256_i32gather_pd(pos, twice_j, 8), vxi);
-      const __m256d dy = _mm256_sub_pd(_mm256_i32gather_pd(pos + 1, twice_j, 8), vyi);
+      const __m256d dx = _mm256_sub_pd(gather(pos, twice_j), vxi);
+      const __m256d dy = _mm256_sub_pd(gather(pos + 1, twice_j), vyi);
       const __m256d r2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
       most4 = _mm256_max_pd(most4, intact_stretch(_mm256_sqrt_pd(r2), _mm256_loadu_pd(inv_len0 + b),
                                                   _mm256_loadu_pd(k + b)));

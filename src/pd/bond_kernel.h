@@ -11,7 +11,7 @@ namespace periflex {
 
 // force_i += sum_j k s e_ij with s = |y_j - y_i| / |xi| - 1 (elastic bond forces). When
 // row_max is given it receives, per particle, the largest stretch over its intact bonds
-// (-1 when none) as a by-product, which break_stretched_bonds can reuse at the same positions.
+// (at most 0 when it has none) as a by-product, which break_stretched_bonds can reuse at the same positions.
 void add_bond_forces(const BondStore& bonds, const double* pos, double* force,
                      double* row_max = nullptr);
 

@@ -37,7 +37,6 @@ if [[ ${#mode[@]} -gt 0 ]]; then suite="quick"; command_line="scripts/make-stabi
 {
   sed -e "s/@SUITE@/$suite/" -e "s|@COMMAND@|$command_line|" -e "s/@DATE@/$(date -u +%Y-%m-%d)/" \
       -e "s/@HOST@/$(nproc) cores/" docs/stability.md.in
-  echo
   # the generated table, without its own title line
   tail -n +2 "$out/stability.md"
 } > docs/stability.md

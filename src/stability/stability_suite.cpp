@@ -294,8 +294,9 @@ std::string stability_table_markdown(const std::vector<CaseResult>& results) {
   md << "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& r : results) {
     const bool measured = r.outcome == "stable" || r.outcome == "stopped";
+    // why a case is not as expected comes first, so a shortened cell still says it
     std::string message = r.message;
-    if (!r.verdict.empty()) message += (message.empty() ? "" : " -- ") + std::string("note: ") + r.verdict;
+    if (!r.verdict.empty()) message = "**" + r.verdict + "**" + (message.empty() ? "" : ": " + message);
     if (message.size() > 400) message = message.substr(0, 397) + "...";
     md << "| " << r.name << " | " << r.group << " | " << r.expected << " | " << r.outcome << " | "
        << (r.as_expected ? "yes" : "**NO**") << " | " << (measured ? num(r.relative_energy_error) : "-") << " | "

@@ -254,6 +254,19 @@ void add_time_step(std::vector<StabilityCase>& cases) {
   dopri.quick = true;
   cases.push_back(dopri);
 
+  // a tolerance at round-off on a stiff body: the controller must give up with a diagnostic (or
+  // finish), in bounded time, rather than shrink the step for ever
+  auto roundoff = survives("pd_stiff_dopri54_roundoff_tolerance", "time_step",
+                           "E x 1000, dopri54 with rtol 1e-15, atol 1e-300", kBlock, kElasticEnergyBound, 0.0,
+                           {"step size", "tolerance", "rtol"},
+                           "a tolerance double precision cannot meet: stopping is the expected answer; a finished "
+                           "run is bounded like any elastic run");
+  roundoff.sets = {"flex_body.block.material.youngs_modulus=1e9", "solver.rtol=1e-15", "solver.atol=1e-300"};
+  roundoff.remedy_terms = {"rtol", "atol"};
+  roundoff.options = {"--integrator", "dopri54", "--until", "0.005"};
+  roundoff.timeout_seconds = 300;
+  cases.push_back(roundoff);
+
   // implicit integrators (when this build has them) far above the explicit limit
   for (const char* name : {"hht", "generalized_alpha"}) {
     for (double factor : {10.0, 100.0}) {

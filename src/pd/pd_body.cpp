@@ -90,6 +90,131 @@ struct PdBody::Impl {
     return volume_fraction(grid.ix[j] - grid.ix[i], grid.iy[j] - grid.iy[i]);
   }
 
+  // Bonds to every neighbour with a positive weight that no notch cuts. k0 receives each bond's
+  // stiffness before the surface correction, nx2 the squared x-component of its unit vector.
+  // Reference lengths come from the integer grid offsets, so both directions hold identical values.
+  void make_bonds(std::vector<double>& k0, std::vector<double>& nx2) {
+    // neighbours within the horizon, plus the half cell the partial-volume band reaches
+    const double reach = def.partial_volume_correction ? delta + 0.5 * dx : delta;
+    const NeighborList nl = find_neighbors(grid.x, grid.y, reach * (1 + 1e-9));
+    const int count = n();
+    const double v = volume.front();
+    bonds.row.assign(count + 1, 0);
+    bonds.neighbor.reserve(nl.col.size());
+    bonds.inv_length.reserve(nl.col.size());
+    k0.reserve(nl.col.size());
+    nx2.reserve(nl.col.size());
+    initial_weight.assign(count, 0.0);
+    for (int i = 0; i < count; ++i) {
+      for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
+        const int32_t j = nl.col[b];
+        const int di = grid.ix[j] - grid.ix[i], dj = grid.iy[j] - grid.iy[i];
+        const double r2 = double(di) * di + double(dj) * dj;
+        const double r = dx * std::sqrt(r2);
+        const double beta = volume_fraction(di, dj);
+        const double w = influence(def.influence, r, delta);
+        if (beta <= 0.0 || w <= 0.0) continue;
+        const Vec2 pi(grid.x[i], grid.y[i]), pj(grid.x[j], grid.y[j]);
+        bool cut = false;
+        for (const NotchDef& notch : def.notches) cut = cut || segments_cross(pi, pj, notch.p1, notch.p2);
+        if (cut) continue;
+        bonds.neighbor.push_back(j);
+        bonds.inv_length.push_back(1.0 / r);
+        k0.push_back(c * w * beta * v * v);
+        nx2.push_back(double(di) * di / r2);
+        initial_weight[i] += beta;
+      }
+      bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
+    }
+    bonds.neighbor.shrink_to_fit();
+    bonds.inv_length.shrink_to_fit();
+    bonds.broken.assign(bonds.neighbor.size(), 0);
+  }
+
+  // Final bond stiffness k = k0 G. Surface correction, energy method of Madenci & Oterkus
+  // (2014): under uniaxial stress along x (then y) each particle's factor is continuum /
+  // discrete energy density; a bond takes the mean of its ends' factors per axis, combined
+  // along its direction n as G = ((n_x / G_x)^2 + (n_y / G_y)^2)^(-1/2). Uniaxial stress
+  // (H = diag(1, -1/3), the contraction of nu = 1/3) rather than uniaxial strain, so that a free
+  // edge loaded along itself, the usual case, is calibrated in the state it is in.
+  void set_stiffness(const std::vector<double>& k0, const std::vector<double>& nx2) {
+    const int count = n();
+    const double v = volume.front();
+    std::vector<double> gx(count, 1.0), gy(count, 1.0);
+    if (def.surface_correction) {
+      const double w_cont = uniaxial_stress_energy_density(c, def.thickness, delta, 1.0);
+      for (int i = 0; i < count; ++i) {
+        double wx = 0.0, wy = 0.0;
+        for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+          // linearised stretch n . H n: n_x^2 - n_y^2 / 3 along x, n_y^2 - n_x^2 / 3 along y
+          const double cx = nx2[b], cy = 1.0 - cx;
+          const double sx = cx - cy / 3.0, sy = cy - cx / 3.0;
+          wx += 0.25 * k0[b] / bonds.inv_length[b] * sx * sx;
+          wy += 0.25 * k0[b] / bonds.inv_length[b] * sy * sy;
+        }
+        if (wx > 0.0) gx[i] = w_cont * v / wx;
+        if (wy > 0.0) gy[i] = w_cont * v / wy;
+      }
+    }
+    bonds.stiffness.resize(k0.size());
+    for (int i = 0; i < count; ++i) {
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+        const int32_t j = bonds.neighbor[b];
+        const double mean_x = 0.5 * (gx[i] + gx[j]), mean_y = 0.5 * (gy[i] + gy[j]);
+        const double cx = nx2[b], cy = 1.0 - cx;
+        bonds.stiffness[b] = k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y));
+      }
+    }
+  }
+
+  // Region loads: imposed motions become prescribed coordinates, tractions and body forces
+  // become per-particle force scales.
+  void collect_loads() {
+    for (const RegionLoadDef& load : def.loads) {
+      std::vector<int> inside;
+      for (int i = 0; i < n(); ++i)
+        if (load.region.contains(Vec2(grid.x[i], grid.y[i]))) inside.push_back(i);
+      if (inside.empty()) {
+        warnings.push_back("load '" + load.name + "' selects no particle");
+        continue;
+      }
+      switch (load.kind) {
+        case RegionLoadDef::Kind::kPrescribedVelocity:
+        case RegionLoadDef::Kind::kPrescribedDisplacement: {
+          const bool velocity = load.kind == RegionLoadDef::Kind::kPrescribedVelocity;
+          for (int i : inside) {
+            for (int comp = 0; comp < 2; ++comp) {
+              const std::optional<TimeFunction>& f = comp == 0 ? load.fx : load.fy;
+              if (!f) continue;
+              PrescribedCoordinate pc;
+              pc.coordinate = offset + 2 * i + comp;
+              pc.reference = reference[2 * i + comp];
+              pc.displacement = velocity ? f->antiderivative() : *f;
+              prescribed.push_back(pc);
+            }
+          }
+          break;
+        }
+        case RegionLoadDef::Kind::kTraction: {
+          // traction [Pa] on the boundary the region covers: total force = traction * length * t,
+          // length = particles * dx / layers, layers = particle rows across the region (the
+          // smaller of its numbers of distinct grid columns and rows)
+          std::set<int32_t> cols, rows;
+          for (int i : inside) {
+            cols.insert(grid.ix[i]);
+            rows.insert(grid.iy[i]);
+          }
+          const double layers = static_cast<double>(std::min(cols.size(), rows.size()));
+          loads.push_back({inside, def.thickness * dx / layers, load.fx, load.fy});
+          break;
+        }
+        case RegionLoadDef::Kind::kBodyForce:
+          loads.push_back({inside, volume.front(), load.fx, load.fy});
+          break;
+      }
+    }
+  }
+
   const double* pos(const Eigen::VectorXd& q) const { return q.data() + offset; }
   int n() const { return grid.size(); }
 };
@@ -109,7 +234,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   };
   require(def.shape.kind == ShapeDef::Kind::kBox || def.shape.kind == ShapeDef::Kind::kCircle ||
               def.shape.kind == ShapeDef::Kind::kPolygon || def.shape.kind == ShapeDef::Kind::kBar,
-          "shape", "needs a box, circle or polygon shape");
+          "shape", "needs a box, circle, polygon or bar shape");
   require(def.grid_spacing > 0.0, "grid_spacing", "grid_spacing must be positive");
   require(def.thickness > 0.0, "thickness", "thickness must be positive");
   require(def.horizon_ratio >= 1.0, "horizon_ratio", "horizon_ratio must be at least 1");
@@ -167,129 +292,17 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
     }
   }
 
-  // neighbours within the horizon (plus the half cell the partial-volume band reaches)
-  m->build_beta_table();
-  const double reach = def.partial_volume_correction ? m->delta + 0.5 * m->dx : m->delta;
-  const NeighborList nl = find_neighbors(m->grid.x, m->grid.y, reach * (1 + 1e-9));
-
-  // keep bonds with a positive weight that no notch cuts; reference lengths come from the
-  // integer grid offsets so both directions hold identical values
+  // no-fail flags, bonds, surface correction, loads
   m->no_fail.assign(n, 0);
   for (int i = 0; i < n; ++i) {
     const Vec2 p(m->grid.x[i], m->grid.y[i]);
     for (const ShapeDef& region : def.no_fail_regions) m->no_fail[i] |= region.contains(p) ? 1 : 0;
   }
-  BondStore& bonds = m->bonds;
-  bonds.row.assign(n + 1, 0);
-  std::vector<double> k0;  // uncorrected stiffness
-  bonds.neighbor.reserve(nl.col.size());
-  bonds.inv_length.reserve(nl.col.size());
-  k0.reserve(nl.col.size());
-  m->initial_weight.assign(n, 0.0);
-  std::vector<double> nx2;  // squared x-component of each bond's unit vector (for the correction)
-  nx2.reserve(nl.col.size());
-  for (int i = 0; i < n; ++i) {
-    for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
-      const int32_t j = nl.col[b];
-      const int a = m->grid.ix[j] - m->grid.ix[i], bb = m->grid.iy[j] - m->grid.iy[i];
-      const double r2 = double(a) * a + double(bb) * bb;
-      const double r = m->dx * std::sqrt(r2);
-      const double beta = m->volume_fraction(a, bb);
-      const double w = influence(def.influence, r, m->delta);
-      if (beta <= 0.0 || w <= 0.0) continue;
-      const Vec2 pi(m->grid.x[i], m->grid.y[i]), pj(m->grid.x[j], m->grid.y[j]);
-      bool cut = false;
-      for (const NotchDef& notch : def.notches) cut = cut || segments_cross(pi, pj, notch.p1, notch.p2);
-      if (cut) continue;
-      bonds.neighbor.push_back(j);
-      bonds.inv_length.push_back(1.0 / r);
-      k0.push_back(m->c * w * beta * v * v);
-      nx2.push_back(double(a) * a / r2);
-      m->initial_weight[i] += beta;
-    }
-    bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
-  }
-  bonds.neighbor.shrink_to_fit();
-  bonds.inv_length.shrink_to_fit();
-  bonds.broken.assign(bonds.neighbor.size(), 0);
-
-  // surface correction, energy method of Madenci & Oterkus (2014): under uniaxial stress along
-  // x (then y) each particle's factor is continuum / discrete energy density; a bond takes the
-  // mean of its ends' factors per axis, combined along its direction n as
-  // G = ((n_x / G_x)^2 + (n_y / G_y)^2)^(-1/2). Uniaxial stress (H = diag(1, -1/3), the
-  // contraction of nu = 1/3) rather than uniaxial strain, so that a free edge loaded along
-  // itself, the usual case, is calibrated in the state it is in.
-  std::vector<double> gx(n, 1.0), gy(n, 1.0);
-  if (def.surface_correction) {
-    const double w_cont = uniaxial_stress_energy_density(m->c, def.thickness, m->delta, 1.0);
-    for (int i = 0; i < n; ++i) {
-      double wx = 0.0, wy = 0.0;
-      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-        // linearised stretch n . H n: n_x^2 - n_y^2 / 3 along x, n_y^2 - n_x^2 / 3 along y
-        const double cx = nx2[b], cy = 1.0 - cx;
-        const double sx = cx - cy / 3.0, sy = cy - cx / 3.0;
-        wx += 0.25 * k0[b] / bonds.inv_length[b] * sx * sx;
-        wy += 0.25 * k0[b] / bonds.inv_length[b] * sy * sy;
-      }
-      if (wx > 0.0) gx[i] = w_cont * v / wx;
-      if (wy > 0.0) gy[i] = w_cont * v / wy;
-    }
-  }
-  bonds.stiffness.resize(k0.size());
-  for (int i = 0; i < n; ++i) {
-    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      const int32_t j = bonds.neighbor[b];
-      const double mean_x = 0.5 * (gx[i] + gx[j]), mean_y = 0.5 * (gy[i] + gy[j]);
-      const double cx = nx2[b], cy = 1.0 - cx;
-      bonds.stiffness[b] = k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y));
-    }
-  }
-
-  // loads and boundary conditions
-  for (size_t li = 0; li < def.loads.size(); ++li) {
-    const RegionLoadDef& load = def.loads[li];
-    std::vector<int> inside;
-    for (int i = 0; i < n; ++i)
-      if (load.region.contains(Vec2(m->grid.x[i], m->grid.y[i]))) inside.push_back(i);
-    if (inside.empty()) {
-      m->warnings.push_back("load '" + load.name + "' selects no particle");
-      continue;
-    }
-    switch (load.kind) {
-      case RegionLoadDef::Kind::kPrescribedVelocity:
-      case RegionLoadDef::Kind::kPrescribedDisplacement: {
-        const bool velocity = load.kind == RegionLoadDef::Kind::kPrescribedVelocity;
-        for (int i : inside) {
-          for (int comp = 0; comp < 2; ++comp) {
-            const std::optional<TimeFunction>& f = comp == 0 ? load.fx : load.fy;
-            if (!f) continue;
-            PrescribedCoordinate pc;
-            pc.coordinate = coordinate_offset + 2 * i + comp;
-            pc.reference = m->reference[2 * i + comp];
-            pc.displacement = velocity ? f->antiderivative() : *f;
-            m->prescribed.push_back(pc);
-          }
-        }
-        break;
-      }
-      case RegionLoadDef::Kind::kTraction: {
-        // traction [Pa] on the boundary the region covers: total force = traction * length * t,
-        // length = particles * dx / rows, rows = particle layers across the region (the
-        // smaller of its distinct grid columns and rows)
-        std::set<int32_t> cols, rows;
-        for (int i : inside) {
-          cols.insert(m->grid.ix[i]);
-          rows.insert(m->grid.iy[i]);
-        }
-        const double layers = static_cast<double>(std::min(cols.size(), rows.size()));
-        m->loads.push_back({inside, def.thickness * m->dx / layers, load.fx, load.fy});
-        break;
-      }
-      case RegionLoadDef::Kind::kBodyForce:
-        m->loads.push_back({inside, v, load.fx, load.fy});
-        break;
-    }
-  }
+  m->build_beta_table();
+  std::vector<double> k0, nx2;
+  m->make_bonds(k0, nx2);
+  m->set_stiffness(k0, nx2);
+  m->collect_loads();
 
   m->bond_damping = def.bond_damping;
   m->global_damping = def.global_damping;

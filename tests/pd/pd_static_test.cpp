@@ -509,3 +509,36 @@ TEST(PdDamage, BreaksTheSameBondsWithOrWithoutTheForcePassesStretchMaxima) {
 
 }  // namespace
 }  // namespace periflex
+
+namespace periflex {
+namespace {
+
+TEST(PdMaterial, ConicalInfluenceKeepsTheBulkStiffness) {
+  // midpoint quadrature of int_0^delta w(r) r^2 dr against delta^3 / 3 (the constant function's
+  // value), which is what the isotropic energy and hence the bulk modulus depend on; 1e-6:
+  // quadrature error
+  const double delta = 2e-3;
+  const int steps = 100000;
+  double conical = 0.0;
+  for (int k = 0; k < steps; ++k) {
+    const double r = (k + 0.5) * delta / steps;
+    conical += influence(FlexBodyDef::Influence::kConical, r, delta) * r * r * delta / steps;
+  }
+  EXPECT_NEAR(conical / (delta * delta * delta / 3.0), 1.0, 1e-6);
+  EXPECT_EQ(influence(FlexBodyDef::Influence::kConical, 1.01 * delta, delta), 0.0);
+}
+
+TEST(PdGrid, ParticlesInAndNearestParticleSelectByReferencePosition) {
+  // a 10 x 6 grid with dx = 1 mm: the box over the right two columns holds 12 particles, all with
+  // x > 3 mm; the particle nearest (4.4, -2.4) mm sits at (4.5, -2.5) mm
+  auto body = PdBody::build(test::glass_plate(0.01, 0.006, 1e-3), 0);
+  const std::vector<int> right = body->particles_in(test::box(0.002, 0.006, Vec2(0.004, 0.0)));
+  EXPECT_EQ(right.size(), 12u);
+  for (int i : right) EXPECT_GT(body->reference_positions()[2 * i], 0.003);
+  const int nearest = body->nearest_particle(Vec2(0.0044, -0.0024));
+  EXPECT_NEAR(body->reference_positions()[2 * nearest], 0.0045, 1e-12);
+  EXPECT_NEAR(body->reference_positions()[2 * nearest + 1], -0.0025, 1e-12);
+}
+
+}  // namespace
+}  // namespace periflex

@@ -25,6 +25,8 @@ std::vector<ObservedOrder> observed_orders(const std::vector<StudyRow>& rows, do
     // adaptive series that vary the tolerance are measured against it; all others against the step
     for (const StudyRow* row : series[key])
       if (row->tol != series[key].front()->tol) order.against_tolerance = true;
+    // an adaptive pair's global error follows the tolerance to the first power
+    if (order.against_tolerance) order.theory = 1;
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     for (const StudyRow* row : series[key]) {
       if (!row->ok() || !(row->error_max_rel > floor)) continue;

@@ -42,7 +42,7 @@ struct ObservedOrder {
   bool against_tolerance = false;
   double slope = 0.0;
   int points = 0;
-  int theory = 0;
+  int theory = 0;                 // order in dt; 1 (tolerance proportionality) against tol
 };
 
 struct StudyResult {

@@ -29,6 +29,7 @@ double rayleigh_speed(double e, double rho, double nu) {
 }
 
 TEST(PdBranching, GlassPlateCrackRunsFromTheNotchBelowRayleighSpeedAndBranches) {
+  test::SerialScope serial;
   const bool full = std::getenv("PERIFLEX_GLASS_FULL") != nullptr;
   std::vector<std::string> overrides;
   if (!full) overrides = {"flex_body.plate.grid_spacing=5e-4", "solver.dt=3.75e-8"};

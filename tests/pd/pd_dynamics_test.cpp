@@ -32,6 +32,7 @@ double column_velocity(const PdBody& body, const Eigen::VectorXd& qd, double at)
 }
 
 TEST(PdWaves, LongitudinalFrontTravelsAtBarWaveSpeed) {
+  test::SerialScope serial;
   // a bar 300 x 15 particles (five horizons wide, so most of it is bulk rather than the
   // nonlocal surface layer; docs/peridynamics.md lists thinner strips) is pushed at its left end with a velocity ramped to v0 over 10 us;
   // the front arrives at a column when the column's mean velocity first reaches v0 / 2 (the
@@ -77,6 +78,7 @@ TEST(PdWaves, LongitudinalFrontTravelsAtBarWaveSpeed) {
 }
 
 TEST(PdVibration, CantileverVibratesAtFirstEulerBernoulliFrequency) {
+  test::SerialScope serial;
   // beam L x h clamped over its first three columns (one horizon) by prescribed zero
   // displacement, started with a transverse velocity in the shape of the first clamped-free
   // mode; the tip deflection starts at zero, and its first and third later zero crossings
@@ -128,6 +130,7 @@ TEST(PdVibration, CantileverVibratesAtFirstEulerBernoulliFrequency) {
 }
 
 TEST(PdVibration, VelocityVerletConservesEnergyOver100Periods) {
+  test::SerialScope serial;
   // free-free bar (60 x 3 particles) in its first axial mode, u = A cos(pi (x + L/2) / L);
   // period 2 L / c. Kinetic + strain energy stays within 0.5% of its start (the brief's
   // tolerance; Verlet's error is bounded and O(dt^2), with no drift; a quarter of the critical
@@ -156,6 +159,7 @@ TEST(PdVibration, VelocityVerletConservesEnergyOver100Periods) {
 }
 
 TEST(PdFracture, BarBreaksAtTheClampWhenTheReflectedWaveDoublesTheStretch) {
+  test::SerialScope serial;
   // a bar clamped at its left end is pulled at its right end with a velocity ramped to v0 over
   // t_r. The incident tension wave carries strain v0 / c, below s0 = 1.5 v0 / c, so nothing
   // breaks on the way; at the clamp the reflection doubles it, and bonds there break when the
@@ -203,6 +207,7 @@ TEST(PdFracture, BarBreaksAtTheClampWhenTheReflectedWaveDoublesTheStretch) {
 }
 
 TEST(PdFracture, NotchedPlateCracksFromTheNotchTipOnly) {
+  test::SerialScope serial;
   // a plate 40 x 20 mm with a notch from its left edge to the centre is pulled apart by its top
   // and bottom rows (no-fail strips there); damage may appear only ahead of the notch tip and
   // near the notch line, the crack must start at the tip and every damaged particle must lie

@@ -2,6 +2,8 @@
 // small explicit velocity-Verlet loop over one PdBody (independent of the solver layer).
 #pragma once
 
+#include <omp.h>
+
 #include <Eigen/Core>
 #include <functional>
 #include <memory>
@@ -11,6 +13,20 @@
 #include "scene/scene_def.h"
 
 namespace periflex::test {
+
+// Runs the enclosing scope on one OpenMP thread. The dynamic tests check physics, not parallel
+// speed (PdDeterminism covers the threaded path); on a machine shared with other jobs a thread
+// that is descheduled at every barrier makes a threaded run many times slower than a serial one.
+class SerialScope {
+ public:
+  SerialScope() : saved_(omp_get_max_threads()) { omp_set_num_threads(1); }
+  ~SerialScope() { omp_set_num_threads(saved_); }
+  SerialScope(const SerialScope&) = delete;
+  SerialScope& operator=(const SerialScope&) = delete;
+
+ private:
+  int saved_;
+};
 
 // A rectangle centred at the origin.
 inline ShapeDef box(double width, double height, Vec2 center = Vec2::Zero()) {

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "core/time_function.h"
-#include "pd/bond_store.h"
 #include "mbs/force_element.h"
+#include "pd/bond_store.h"
 #include "scene/scene_def.h"
 
 namespace periflex {

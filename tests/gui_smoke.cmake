@@ -22,16 +22,19 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
     set_tests_properties(gui_smoke_${name} PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb
                          FIXTURES_SETUP gui_picture_${name})
     add_test(NAME gui_smoke_${name}_picture COMMAND gui_png_check "${gui_out}/${name}.png")
-    set_tests_properties(gui_smoke_${name}_picture PROPERTIES LABELS gui FIXTURES_REQUIRED gui_picture_${name})
+    set_tests_properties(gui_smoke_${name}_picture PROPERTIES LABELS gui
+                         FIXTURES_REQUIRED gui_picture_${name})
   endforeach()
 
-  # the crack: run the notched plate until well after the crack starts (near 0.4 ms), without the
-  # probe crosses and markers (yellow and orange, like the upper colour map) or the overlay legend
+  # the crack: run the notched plate to t = 0.8 ms, well after the crack starts (near 0.4 ms),
+  # without the probe crosses and markers (yellow and orange, like the upper colour map) or the
+  # overlay legend
   set(notched "${PROJECT_SOURCE_DIR}/scenes/notched_plate.toml")
+  set(gui_plain "show probes off@0; show markers off@0; show overlay off@0")
   if(EXISTS "${notched}")
     add_test(NAME gui_smoke_crack
              COMMAND ${gui_xvfb} ${gui_program} "${notched}" --frames 6 --screenshot "${gui_out}/crack.png"
-                     --script "show probes off@0; show markers off@0; show overlay off@0; speed max@0; run@0; wait 0.8e-3@2")
+                     --script "${gui_plain}; speed max@0; run@0; wait 0.8e-3@2")
     set_tests_properties(gui_smoke_crack PROPERTIES LABELS gui TIMEOUT 120 RESOURCE_LOCK xvfb
                          FIXTURES_SETUP gui_picture_crack)
     add_test(NAME gui_smoke_crack_picture COMMAND gui_png_check "${gui_out}/crack.png" --crack "${notched}")
@@ -40,20 +43,26 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
     # the same picture before the crack grows must fail the crack check (so the check can fail)
     add_test(NAME gui_smoke_no_crack
              COMMAND ${gui_xvfb} ${gui_program} "${notched}" --frames 4 --screenshot "${gui_out}/no_crack.png"
-                     --script "pause@0; reset@0; show probes off@0; show markers off@0; show overlay off@0")
+                     --script "pause@0; reset@0; ${gui_plain}")
     set_tests_properties(gui_smoke_no_crack PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb
                          FIXTURES_SETUP gui_picture_no_crack)
     add_test(NAME gui_smoke_no_crack_picture
              COMMAND gui_png_check "${gui_out}/no_crack.png" --no-crack "${notched}")
-    set_tests_properties(gui_smoke_no_crack_picture PROPERTIES LABELS gui FIXTURES_REQUIRED gui_picture_no_crack)
+    set_tests_properties(gui_smoke_no_crack_picture PROPERTIES LABELS gui
+                         FIXTURES_REQUIRED gui_picture_no_crack)
   endif()
 
-  # the controls: pause, step, change a live setting, resume, switch colour map; each checked
+  # the controls: pause, step, change a live setting, resume, switch colour map (each checked),
+  # then from the start pull the pendulum's free end up with the mouse spring and let go
   set(flexible "${PROJECT_SOURCE_DIR}/scenes/flexible_pendulum.toml")
+  string(JOIN "; " gui_controls "pause@5" "expect paused@5" "step@6" "set bond_damping=0.1@7"
+         "expect bond_damping=0.1@7" "resume@8" "expect running@8" "colormap viridis@9"
+         "expect colormap=viridis@9" "fit@10" "reset@10" "grab 0.45 0@11"
+         "drag 0.45 0.1@12" "run@12" "release@14")
   if(EXISTS "${flexible}")
     add_test(NAME gui_smoke_script
-             COMMAND ${gui_xvfb} ${gui_program} "${flexible}" --frames 14
-                     --script "pause@5; expect paused@5; step@6; set bond_damping=0.1@7; expect bond_damping=0.1@7; resume@8; expect running@8; colormap viridis@9; expect colormap=viridis@9; fit@10")
+             COMMAND ${gui_xvfb} ${gui_program} "${flexible}" --frames 16
+                     --script "${gui_controls}")
     set_tests_properties(gui_smoke_script PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb)
   endif()
 endif()

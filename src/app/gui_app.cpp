@@ -94,8 +94,10 @@ std::string GuiApp::default_screenshot_name() const {
 // snapshot and status of this frame
 
 void GuiApp::take_snapshot() {
-  worker_.update_snapshot();
+  // status first: a snapshot is published before the status describing it, so the snapshot
+  // taken next is at least as new as the status (a script acting on the status sees its state)
   status_ = worker_.status();
+  worker_.update_snapshot();
   const Snapshot& snap = worker_.snapshot();
   // a rebuilt model starts new plots; a scene loaded from disk is framed again
   if (status_.generation != seen_generation_) {
@@ -137,7 +139,8 @@ bool GuiApp::script_blocked() {
   if (synced) {
     const ScriptAction a = *pending_expect_;
     pending_expect_.reset();
-    evaluate_expectation(a);
+    if (a.verb == "grab") grab(a);
+    else evaluate_expectation(a);
     return false;
   }
   if (timed_out) {
@@ -231,6 +234,23 @@ void GuiApp::execute(const ScriptAction& a) {
     if (!writer_) script_failure("recording did not start: " + record_message_);
   } else if (verb == "stop_record") {
     stop_recording();
+  } else if (verb == "grab") {
+    // after the requests sent so far (a reset, say) have been applied
+    pending_expect_ = a;
+    block_started_ = wall_seconds();
+  } else if (verb == "drag") {
+    if (!grabbing_) {
+      script_failure("drag without a grab");
+      return;
+    }
+    grab_spring_.target = Vec2(std::atof(a.args[0].c_str()), std::atof(a.args[1].c_str()));
+    SimCommand c = command(Kind::kMouseSpring);
+    c.spring = grab_spring_;
+    c.count = 0;  // a move, not a new grab
+    send(c);
+  } else if (verb == "release") {
+    grabbing_ = false;
+    send(command(Kind::kMouseSpring));
   } else if (verb == "wait") {
     wait_time_ = std::atof(a.args[0].c_str());
     block_started_ = wall_seconds();
@@ -240,6 +260,26 @@ void GuiApp::execute(const ScriptAction& a) {
   } else if (verb == "quit") {
     quit_ = true;
   }
+}
+
+void GuiApp::grab(const ScriptAction& a) {
+  // what lies at the world point, picked as the mouse would
+  const Vec2 world(std::atof(a.args[0].c_str()), std::atof(a.args[1].c_str()));
+  int fb_width = 0, fb_height = 0;
+  glfwGetFramebufferSize(window_, &fb_width, &fb_height);
+  const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
+  std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance);
+  if (!spring) {
+    script_failure("nothing to grab at (" + a.args[0] + ", " + a.args[1] + ")");
+    return;
+  }
+  grabbing_ = true;
+  grab_by_mouse_ = false;
+  grab_spring_ = *spring;
+  SimCommand c = SimCommand::make(SimCommand::Kind::kMouseSpring, "script");
+  c.spring = spring;
+  c.count = 1;
+  send(c);
 }
 
 void GuiApp::evaluate_expectation(const ScriptAction& a) {
@@ -295,7 +335,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
   const Vec2 world = camera_.to_world(mx, my, fb_width, fb_height);
 
   // a grab lasts until the left button is released, wherever the mouse goes
-  if (grabbing_) {
+  if (grabbing_ && grab_by_mouse_) {
     SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
       grabbing_ = false;
@@ -322,6 +362,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
     if (std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance)) {
       grabbing_ = true;
+      grab_by_mouse_ = true;
       grab_spring_ = *spring;
       SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
       c.spring = spring;

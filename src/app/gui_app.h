@@ -38,6 +38,7 @@ class GuiApp {
   bool script_blocked();
   void execute(const ScriptAction& action);
   void evaluate_expectation(const ScriptAction& action);
+  void grab(const ScriptAction& action);
   void handle_input(int fb_width, int fb_height);
   void draw_panels(int fb_width, int fb_height);
   void draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, int fb_height);
@@ -95,7 +96,7 @@ class GuiApp {
   long frame_ = 0;
   size_t next_action_ = 0;
   std::optional<double> wait_time_;
-  std::optional<ScriptAction> pending_expect_;
+  std::optional<ScriptAction> pending_expect_;   // an expect or grab waiting for the sync
   double block_started_ = 0.0;
   long sent_ = 0;
   bool quit_ = false;
@@ -103,6 +104,7 @@ class GuiApp {
 
   // mouse
   bool grabbing_ = false;
+  bool grab_by_mouse_ = false;      // false: a script holds the grab
   MouseSpring grab_spring_;
 
   // capture and recording

@@ -34,14 +34,14 @@ bool is_number(const std::string& s) {
 struct Arity { size_t least, most; };
 Arity arity(const std::string& verb) {
   static const std::set<std::string> none = {"run", "resume", "pause", "reset", "reload", "fit",
-                                             "stop_record", "quit"};
+                                             "stop_record", "release", "quit"};
   static const std::set<std::string> one = {"scene", "set", "speed", "colormap", "field", "follow",
                                             "screenshot", "screenshot_ui", "wait", "expect"};
   if (none.count(verb)) return {0, 0};
   if (one.count(verb)) return {1, 1};
   if (verb == "step") return {0, 1};
   if (verb == "range") return {1, 2};
-  if (verb == "show" || verb == "record") return {2, 2};
+  if (verb == "show" || verb == "record" || verb == "grab" || verb == "drag") return {2, 2};
   return {99, 0};  // unknown
 }
 
@@ -65,6 +65,10 @@ void check_arguments(const ScriptAction& a) {
   if (a.verb == "speed" && a.args[0] != "max") number_at(0);
   if (a.verb == "wait") number_at(0);
   if (a.verb == "record") number_at(1);
+  if (a.verb == "grab" || a.verb == "drag") {
+    number_at(0);
+    number_at(1);
+  }
   if (a.verb == "range" && !(a.args.size() == 1 && a.args[0] == "auto")) {
     if (a.args.size() != 2) fail(a.text, "range takes 'auto' or MIN MAX");
     number_at(0);

@@ -61,7 +61,9 @@ TEST(GuiScript, RejectsBadActionsNamingThem) {
                        "field colour@1",   // unknown field
                        "show bonds maybe@1",  // not on/off
                        "range 1@2",        // range needs auto or two numbers
-                       "pause now@1"};     // pause takes no argument
+                       "pause now@1",      // pause takes no argument
+                       "grab 0.1@1",       // grab needs X and Y
+                       "drag x y@1"};      // not numbers
   for (const char* script : bad) {
     try {
       parse_script(script);

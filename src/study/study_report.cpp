@@ -104,7 +104,7 @@ std::string refine_gnuplot_script(const StudyResult& result, const std::string& 
   out << "set datafile separator ','\nset logscale xy\n";
   out << "set format x '10^{%L}'\nset format y '10^{%L}'\n";
   out << "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\nset key outside right top\n";
-  out << "set xlabel 'wall time [s]'\nset ylabel 'relative error of " << result.quantity << "'\n";
+  out << "set xlabel 'wall time [s]'\nset ylabel 'relative error of " << result.quantity << "' noenhanced\n";
   out << "set title '" << result.study.name << ": error against run time as the grid is refined' noenhanced\n";
   std::vector<double> ratios;
   for (const StudyRow& r : result.rows)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/vec2.h"
 #include "study/refine_study.h"
 #include "study/study_def.h"
 
@@ -36,7 +37,7 @@ horizon_ratio = 2.0
   ASSERT_EQ(r.rows.size(), 2u);
   for (const StudyRow& row : r.rows) ASSERT_TRUE(row.ok()) << row.status;
   // f1 = 1.8751^2 / (2 pi L^2) * h sqrt(E / (12 rho)), L = 0.2, h = 0.02, E = 1e8, rho = 1000
-  const double f1 = 1.875104068711961 * 1.875104068711961 / (2.0 * M_PI * 0.04) * 0.02 * std::sqrt(1e8 / 12000.0);
+  const double f1 = 1.875104068711961 * 1.875104068711961 / (2.0 * kPi * 0.04) * 0.02 * std::sqrt(1e8 / 12000.0);
   EXPECT_NEAR(r.rows[0].expected, f1, 1e-9 * f1);
   // halving dx at least halves the error (the grid's discretisation error is about first order
   // in dx here, with the clamp edge and the surface of the beam resolved to within dx)

@@ -379,6 +379,20 @@ double Dynamics::velocity_violation(double t, const Eigen::VectorXd& q, const Ei
   return jqd_.size() ? jqd_.cwiseAbs().maxCoeff() : 0.0;
 }
 
+std::vector<std::string> Dynamics::nearly_dependent_blocks(double t, const Eigen::VectorXd& q,
+                                                          double relative_threshold) {
+  std::vector<std::string> names;
+  if (active_.empty()) return names;
+  assemble_jacobian(t, q);
+  Eigen::SparseMatrix<double> j(active_rows(), constrained_coordinates());
+  j.setFromTriplets(local_j_.begin(), local_j_.end());
+  for (int a : dependent_rows(j, relative_threshold)) {
+    const std::string& name = block_of_row(active_[a]);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
 std::string Dynamics::worst_constraint(double t, const Eigen::VectorXd& q) {
   if (active_.empty()) return "";
   residual_all(t, q);

@@ -57,6 +57,9 @@ class Dynamics final : public OdeSystem {
   // max |Phi| and max |Phi_q qd + Phi_t| over the active rows.
   double position_violation(double t, const Eigen::VectorXd& q);
   double velocity_violation(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
+  // Blocks whose active rows are (nearly) dependent at (t, q): a rank-revealing QR of the
+  // Jacobian with pivots below relative_threshold counted as zero. Empty when of full rank.
+  std::vector<std::string> nearly_dependent_blocks(double t, const Eigen::VectorXd& q, double relative_threshold);
   // Name of the block with the largest |Phi| at (t, q).
   std::string worst_constraint(double t, const Eigen::VectorXd& q);
 

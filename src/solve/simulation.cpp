@@ -31,6 +31,8 @@ constexpr long kDrawnBondLimit = 5000;
 // the model size, kinetic energy above this multiple of the energy the model can hold.
 constexpr double kViolationFraction = 0.05;
 constexpr double kEnergyGrowth = 1e3;
+// Relative pivot below which the Jacobian counts as nearly singular when explaining a failure.
+constexpr double kNearSingular = 1e-4;
 // Steps between checks of the elastic energy (it costs about one force evaluation).
 constexpr long kElasticCheckInterval = 64;
 }  // namespace
@@ -252,6 +254,17 @@ void Simulation::Impl::advance(double h) {
     state = saved;
     time = saved_time;
     integrator->reset();
+    // a mechanism that locks shows a (nearly) singular Jacobian at the last good state
+    if (dynamics->has_constraints() && d.quantity != "constraint Jacobian") {
+      const auto names = dynamics->nearly_dependent_blocks(time, state.q, kNearSingular);
+      if (!names.empty()) {
+        std::string list;
+        for (const auto& n : names) list += (list.empty() ? "'" : ", '") + n + "'";
+        d.cause += "; the constraint Jacobian is nearly singular at t = " + number(time) + " (dependent: " + list +
+                   "): the mechanism reaches a toggle or locked position";
+        d.remedy = "change the geometry or the driver so the mechanism avoids this position";
+      }
+    }
     throw NumericalError(d);
   }
   const double total = since(start);

@@ -84,14 +84,16 @@ BENCHMARK(BM_NotchedPlateStep100k)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond
     ->MinTime(3.0);
 
 // Constraint-solve cost against attached particles: dx = 0.5 mm (200 x 80 = 16k particles),
-// grips 3 to 48 columns wide (2 x 240 to 2 x 3840 attached particles); arg = columns.
+// grips 3 to 24 columns wide (2 x 240 to 2 x 1920 attached particles); arg = columns. Building
+// the model, not stepping it, limits the sweep: the redundancy analysis at set-up grows about
+// with the cube of the attached particles (12 s at 2 x 960 on this machine).
 void BM_ConstraintSolveVsAttachedParticles(benchmark::State& state) {
   const int columns = static_cast<int>(state.range(0));
   const SceneDef scene = refined_plate(5e-4, columns, 1);
   state.counters["attached"] = 2.0 * columns * 80;
   run_steps(state, scene);
 }
-BENCHMARK(BM_ConstraintSolveVsAttachedParticles)->Arg(3)->Arg(6)->Arg(12)->Arg(24)->Arg(48)
+BENCHMARK(BM_ConstraintSolveVsAttachedParticles)->Arg(3)->Arg(6)->Arg(12)->Arg(24)
     ->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(1.0);
 
 }  // namespace

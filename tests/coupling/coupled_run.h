@@ -3,6 +3,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -15,6 +16,10 @@
 #include "solve/simulation.h"
 
 namespace periflex::test {
+
+// The scenes of these tests are small (at most 4000 particles): one thread is the fastest, and
+// waiting OpenMP workers would only spin against the other test programs ctest runs alongside.
+inline const bool kSingleThreaded = (omp_set_num_threads(1), true);
 
 inline std::string scene_path(const std::string& stem) {
   return std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/" + stem + ".toml";

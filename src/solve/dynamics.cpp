@@ -122,10 +122,11 @@ void Dynamics::analyse(double t) {
     assemble_jacobian(t, q);
     Eigen::SparseMatrix<double> j(active_rows(), nc);
     j.setFromTriplets(local_j_.begin(), local_j_.end());
-    const Eigen::MatrixXd dense = Eigen::MatrixXd(j);
+    j.makeCompressed();
+    // only the massless columns, dense: few of them, however many rows
     auto rank_of = [&](const std::vector<int>& cols) {
-      Eigen::MatrixXd sub(dense.rows(), static_cast<Eigen::Index>(cols.size()));
-      for (size_t k = 0; k < cols.size(); ++k) sub.col(static_cast<Eigen::Index>(k)) = dense.col(cols[k]);
+      Eigen::MatrixXd sub = Eigen::MatrixXd::Zero(j.rows(), static_cast<Eigen::Index>(cols.size()));
+      for (size_t k = 0; k < cols.size(); ++k) sub.col(static_cast<Eigen::Index>(k)) = Eigen::VectorXd(j.col(cols[k]));
       return column_rank(sub);
     };
     if (rank_of(massless) < static_cast<int>(massless.size())) {

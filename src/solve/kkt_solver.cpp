@@ -106,12 +106,20 @@ bool KktSolver::factorize_split(const Eigen::VectorXd& w, const Triplets& jacobi
   solved_coupling_ = lu_.solve(coupling_);
   const Eigen::MatrixXd schur = corner - coupling_.transpose() * solved_coupling_;
   if (!solved_coupling_.allFinite() || !schur.allFinite()) return false;
-  schur_.compute(schur);
-  // a tiny pivot relative to the matrix means the hubs are not determined
-  const double det_scale = schur.cwiseAbs().maxCoeff();
+  // equilibrate S (hub coordinates and equations on them differ by many orders of magnitude:
+  // S is itself a small saddle-point matrix), then check its pivots against unit scale
+  schur_scale_ = Eigen::VectorXd::Ones(nh);
+  for (int pass = 0; pass < 8; ++pass) {
+    for (int r = 0; r < nh; ++r) {
+      double largest = 0.0;
+      for (int c = 0; c < nh; ++c) largest = std::max(largest, std::abs(schur(r, c)) * schur_scale_[r] * schur_scale_[c]);
+      if (largest > 0.0) schur_scale_[r] /= std::sqrt(largest);
+    }
+  }
+  schur_.compute(schur_scale_.asDiagonal() * schur * schur_scale_.asDiagonal());
   const Eigen::MatrixXd u = schur_.matrixLU().triangularView<Eigen::Upper>();
   for (int k = 0; k < nh; ++k) {
-    if (!(std::abs(u(k, k)) > 1e-13 * det_scale)) return false;
+    if (!(std::abs(u(k, k)) > 1e-12)) return false;
   }
   return true;
 }
@@ -128,7 +136,8 @@ Eigen::VectorXd KktSolver::solve(const Eigen::VectorXd& rhs) const {
     for (size_t k = 0; k < sparse_.size(); ++k) bs[k] = scaled[sparse_[k]];
     for (size_t k = 0; k < hub_.size(); ++k) bh[k] = scaled[hub_[k]];
     const Eigen::VectorXd z = lu_.solve(bs);
-    const Eigen::VectorXd xh = schur_.solve(bh - coupling_.transpose() * z);
+    const Eigen::VectorXd rh = schur_scale_.cwiseProduct(bh - coupling_.transpose() * z);
+    const Eigen::VectorXd xh = schur_scale_.cwiseProduct(schur_.solve(rh));
     const Eigen::VectorXd xs = z - solved_coupling_ * xh;
     for (size_t k = 0; k < sparse_.size(); ++k) y[sparse_[k]] = xs[k];
     for (size_t k = 0; k < hub_.size(); ++k) y[hub_[k]] = xh[k];

@@ -56,7 +56,8 @@ class KktSolver {
   std::vector<int> position_;       // unknown -> index within its part
   Eigen::MatrixXd coupling_;        // B: sparse part x hubs
   Eigen::MatrixXd solved_coupling_; // A^-1 B
-  Eigen::PartialPivLU<Eigen::MatrixXd> schur_;  // C - B^T A^-1 B
+  Eigen::PartialPivLU<Eigen::MatrixXd> schur_;  // E (C - B^T A^-1 B) E, equilibrated
+  Eigen::VectorXd schur_scale_;                  // E
 };
 
 }  // namespace periflex

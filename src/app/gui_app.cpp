@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
+#include <thread>
 
 #include "app/picking.h"
 #include "app/view_fit.h"
@@ -475,6 +476,8 @@ int GuiApp::run() {
 
     if (advance) ++frame_;
     if (quit_ || (options_.frames > 0 && frame_ >= options_.frames)) break;
+    // a script waiting on the simulation need not redraw flat out (no vsync in scripted runs)
+    if (!advance) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   stop_recording();
   return exit_code_;

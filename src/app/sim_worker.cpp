@@ -278,6 +278,7 @@ void SimWorker::record_if_due() {
 }
 
 void SimWorker::loop() {
+  if (factory_.started) factory_.started();
   Clock::time_point last_publish = Clock::now();
   for (;;) {
     // requests first: they land between two steps, in the order they were sent

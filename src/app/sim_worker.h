@@ -42,12 +42,17 @@ class SteppedModel {
 
 // How the worker gets scenes and models: load reads a file (throws InputError), build makes a
 // ready-to-step model from a scene (throws InputError or NumericalError).
+// started (optional) runs first thing on the simulation thread, for per-thread set-up.
 struct ModelFactory {
   std::function<SceneDef(const std::string& path, const std::vector<std::string>& overrides)> load;
   std::function<std::unique_ptr<SteppedModel>(const SceneDef& scene)> build;
+  std::function<void()> started;
 };
 
-// The factory the program uses: scene/scene_loader.h and solve/simulation.h.
+// The factory the program uses: scene/scene_loader.h and solve/simulation.h. The simulation
+// thread's parallel force loops use one core fewer than the machine has (at least one), so
+// drawing keeps a core: with every core busy stepping, the solver's threads and the render
+// thread take turns and both slow down many times.
 ModelFactory simulation_model_factory();
 
 // A copy of the worker's state for the panels, refreshed whenever a snapshot is published.

@@ -1,4 +1,7 @@
 // The worker's model in the program: a Simulation built from a scene file.
+#include <omp.h>
+
+#include <algorithm>
 #include <memory>
 
 #include "app/sim_worker.h"
@@ -59,6 +62,8 @@ ModelFactory simulation_model_factory() {
   f.build = [](const SceneDef& scene) -> std::unique_ptr<SteppedModel> {
     return std::make_unique<SimulationModel>(scene);
   };
+  // parallel regions started by the simulation thread leave one core to drawing
+  f.started = [] { omp_set_num_threads(std::max(1, omp_get_num_procs() - 1)); };
   return f;
 }
 

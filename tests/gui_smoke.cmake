@@ -64,5 +64,17 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
              COMMAND ${gui_xvfb} ${gui_program} "${flexible}" --frames 16
                      --script "${gui_controls}")
     set_tests_properties(gui_smoke_script PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb)
+
+    # recording from the window: a PNG every 10 ms of simulated time for 50 ms; the fourth frame
+    # must be a real picture (the folder is emptied first, so old frames cannot pass)
+    add_test(NAME gui_smoke_record_clean COMMAND ${CMAKE_COMMAND} -E rm -rf "${gui_out}/record")
+    set_tests_properties(gui_smoke_record_clean PROPERTIES LABELS gui FIXTURES_SETUP gui_record_clean)
+    add_test(NAME gui_smoke_record
+             COMMAND ${gui_xvfb} ${gui_program} "${flexible}" --frames 6
+                     --script "speed max@0; record ${gui_out}/record 0.01@1; wait 0.05@2; stop_record@3")
+    set_tests_properties(gui_smoke_record PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb
+                         FIXTURES_REQUIRED gui_record_clean FIXTURES_SETUP gui_record)
+    add_test(NAME gui_smoke_record_picture COMMAND gui_png_check "${gui_out}/record/frame_000003.png")
+    set_tests_properties(gui_smoke_record_picture PROPERTIES LABELS gui FIXTURES_REQUIRED gui_record)
   endif()
 endif()

@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "app/gui_app.h"
+#include "app/view_fit.h"
 #include "render/gl.h"
 #include "render/image.h"
 
@@ -73,8 +74,11 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
 
 void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
   // draw off-screen, read back (rows bottom-up in GL), hand to the writer
+  // the movie has no panels: centre what the window shows beside them
+  Camera camera = camera_;
+  camera.center.x() += 0.5 * kPanelWidth * camera.view_height / std::max(1, record_height_);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  renderer_->draw(frame, camera_, render_, record_width_, record_height_);
+  renderer_->draw(frame, camera, render_, record_width_, record_height_);
   RgbaImage image;
   image.resize(record_width_, record_height_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);

@@ -21,36 +21,12 @@ class SimulationModel final : public SteppedModel {
   const ModelInfo& info() const override { return sim_.info(); }
   void fill_snapshot(Snapshot& out) const override { sim_.fill_snapshot(out); }
   LiveSettings settings() const override { return sim_.settings(); }
-  void apply(const LiveSettings& settings) override;
+  void apply(const LiveSettings& settings) override { sim_.apply(settings); }
   void set_mouse_spring(const std::optional<MouseSpring>& spring) override { sim_.set_mouse_spring(spring); }
 
  private:
   Simulation sim_;
 };
-
-void SimulationModel::apply(const LiveSettings& wanted) {
-  const LiveSettings current = sim_.settings();
-  if (!wanted.integrator.empty() && wanted.integrator != current.integrator) {
-    sim_.apply(wanted);
-    return;
-  }
-  // Simulation::apply (solve/simulation.cpp at 768d027) loses its integrator when the name is
-  // unchanged in a scene with particles and then dereferences it. Until that is fixed there,
-  // the change goes through an integrator without an explicit stability bound (so that step
-  // cannot be refused) and back, each time under a changed name.
-  LiveSettings interim = wanted;
-  interim.integrator = current.integrator == "dopri54" ? "hht" : "dopri54";
-  sim_.apply(interim);
-  try {
-    LiveSettings back = wanted;
-    back.integrator = current.integrator;
-    sim_.apply(back);
-  } catch (...) {
-    // refused (say, dt above the critical step): restore the running configuration
-    sim_.apply(current);
-    throw;
-  }
-}
 
 }  // namespace
 

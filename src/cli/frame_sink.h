@@ -20,8 +20,9 @@ struct FrameStats {
 class FrameSink {
  public:
   virtual ~FrameSink() = default;
-  // Hands a snapshot over; returns once it is copied (the drawing happens in another thread).
-  virtual void submit(const Snapshot& snapshot) = 0;
+  // Hands a snapshot over as the next movie / sequence frame, or as the single screenshot;
+  // returns once it is copied (the drawing happens in another thread).
+  virtual void submit(const Snapshot& snapshot, bool screenshot = false) = 0;
   // Waits for every frame to be written. Throws std::runtime_error on failure.
   virtual FrameStats finish() = 0;
 };

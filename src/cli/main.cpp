@@ -4,6 +4,8 @@
 //   periflex run SCENE [...]       headless run: series.csv, summary.json, frames, movies
 //   periflex check SCENE           validate and describe a scene
 //   periflex gui [SCENE] [...]     interactive visualiser
+//   periflex study STUDY.toml      error against run time across integrators and steps
+//   periflex stability [--quick]   the stiff and extreme cases, with a table of outcomes
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <cstdlib>
@@ -13,6 +15,8 @@
 #include "cli/gui_command.h"
 #include "cli/run_command.h"
 #include "cli/scene_setup.h"
+#include "cli/stability_command.h"
+#include "cli/study_command.h"
 #include "core/error.h"
 
 namespace {
@@ -80,6 +84,11 @@ int run_main(int argc, char** argv) {
   gui_cmd->add_option("--screenshot", gui.screenshot, "Write the last frame to this PNG");
   gui_cmd->add_option("--script", gui.script, "Timed actions, e.g. 'pause@5; step@6; resume@8'");
 
+  StudyOptions study;
+  auto* study_cmd = add_study_subcommand(app, study);
+  StabilityOptions stability;
+  auto* stability_cmd = add_stability_subcommand(app, stability);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -91,6 +100,8 @@ int run_main(int argc, char** argv) {
 
   if (*run_cmd) return run_command(run);
   if (*check_cmd) return check_command(check_scene, check_overrides);
+  if (*study_cmd) return study_command(study);
+  if (*stability_cmd) return stability_command(stability);
   if (*gui_cmd) {
     if (gui.scene_path.empty()) gui.scene_path = default_scene_path();
     return gui_command(gui);

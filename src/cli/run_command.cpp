@@ -124,7 +124,7 @@ int run_command(const RunOptions& requested) {
       frame_times.advance_past(t, eps);
     }
     if (shot_due) {
-      frames->submit(snapshot);
+      frames->submit(snapshot, true);
       snapshot_time.reset();
     }
     if (vtk_due) vtk->write(snapshot);

@@ -2,6 +2,8 @@
 // correction, books the energies, watches for divergence, and reports samples and snapshots.
 #include "solve/simulation.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -348,6 +350,8 @@ Energies Simulation::Impl::energies() const {
 Simulation::Simulation(const SceneDef& scene) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
   s.scene = scene;
+  // solver.threads caps the force evaluation's OpenMP team (0 keeps the runtime's default)
+  if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
   if (!(scene.solver.dt > 0.0)) throw InputError({scene.path, 0, 0, "solver.dt"}, "solver.dt must be > 0");
   if (!(scene.solver.dt_safety > 0.0)) {
     throw InputError({scene.path, 0, 0, "solver.dt_safety"}, "solver.dt_safety must be > 0");
@@ -570,14 +574,15 @@ void Simulation::apply(const LiveSettings& settings) {
     next = make_integrator(settings.integrator, s.scene.solver);
   }
   const double dt = settings.dt > 0.0 ? settings.dt : s.live.dt;
-  std::swap(next, s.integrator);
+  // try the candidate integrator in place (the stability bound depends on it); a refusal
+  // puts the running one back. With the same integrator nothing is swapped.
+  if (next) std::swap(next, s.integrator);
   if (s.stability_bound_applies() && dt > s.allowed_step() && !s.scene.solver.auto_substep) {
     const std::string message = s.stability_message(dt);
-    std::swap(next, s.integrator);  // keep the running configuration
+    if (next) std::swap(next, s.integrator);  // keep the running configuration
     throw InputError({"", 0, 0, "solver.dt"}, message + "; lower it below " + number(s.allowed_step()) +
                                                   " or enable solver.auto_substep");
   }
-  if (!s.integrator) std::swap(next, s.integrator);
   s.live.integrator = s.integrator->name();
   s.live.dt = dt;
   s.live.correction = settings.correction;

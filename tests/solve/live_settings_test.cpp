@@ -64,5 +64,46 @@ TEST(LiveSettings, UnknownIntegratorIsRefusedAndTheRunContinues) {
   EXPECT_EQ(sim.step_count(), 1);
 }
 
+// A small elastic plate, so the explicit stability bound applies to every live change.
+SceneDef small_plate(double dt) {
+  SceneDef scene = test::empty_scene("verlet", dt, CorrectionDef::Method::kNone);
+  scene.gravity = Vec2::Zero();
+  FlexBodyDef plate;
+  plate.name = "plate";
+  plate.shape.kind = ShapeDef::Kind::kBox;
+  plate.shape.width = plate.shape.height = 0.01;
+  plate.grid_spacing = 1e-3;
+  plate.thickness = 1e-3;
+  plate.material.youngs_modulus = 1e9;
+  plate.material.density = 1000.0;
+  plate.material.critical_stretch = 0.01;
+  plate.velocity = Vec2(0.1, 0.0);
+  scene.flex_bodies.push_back(plate);
+  return scene;
+}
+
+TEST(LiveSettings, SameIntegratorWithNewDampingKeepsSteppingOnAParticleScene) {
+  Simulation sim(small_plate(1e-9));
+  sim.initialize();
+  const double dt_crit = sim.info().critical_time_step;
+  ASSERT_GT(dt_crit, 1e-9);
+  LiveSettings live = sim.settings();
+  live.global_damping = 10.0;
+  live.dt = 0.5 * dt_crit;
+  sim.apply(live);  // same integrator: must neither lose it nor refuse the step
+  EXPECT_EQ(sim.settings().integrator, "verlet");
+  EXPECT_DOUBLE_EQ(sim.settings().global_damping, 10.0);
+  sim.step();
+  sim.step();
+  EXPECT_EQ(sim.step_count(), 2);
+
+  // a step above the bound is refused and the running configuration stays
+  live.dt = 100.0 * dt_crit;
+  EXPECT_THROW(sim.apply(live), InputError);
+  EXPECT_DOUBLE_EQ(sim.settings().dt, 0.5 * dt_crit);
+  sim.step();
+  EXPECT_EQ(sim.step_count(), 3);
+}
+
 }  // namespace
 }  // namespace periflex

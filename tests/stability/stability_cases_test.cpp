@@ -83,7 +83,7 @@ TEST(StabilityCommand, WritesMarkdownAndCsvTables) {
   ChildLimits limits;
   limits.timeout_seconds = 60;
   const auto help = run_child({PERIFLEX_BINARY, "stability", "--list"}, limits);
-  if (help.exit_code != 0) GTEST_SKIP() << "this build's periflex has no 'stability' subcommand yet";
+  ASSERT_EQ(help.exit_code, 0) << help.output;
   EXPECT_NE(help.output.find("spring_verlet_at_limit"), std::string::npos);
   const std::string out = (std::filesystem::current_path() / "stability_command_out").string();
   std::filesystem::remove_all(out);

@@ -3,7 +3,9 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 #include "core/resources.h"
 #include "render/camera.h"
@@ -12,6 +14,17 @@
 namespace periflex {
 
 enum class ColorField { kDamage, kDisplacement, kSpeed, kStrain };
+
+// Name shown in the legend and accepted on the command line: "damage", "displacement", "speed",
+// "strain".
+const char* field_name(ColorField field);
+// Parses a name given by field_name; returns false when it is none of them.
+bool parse_field_name(const std::string& name, ColorField& field);
+
+// Dear ImGui keeps its current context in one process-wide pointer. Any code that uses an ImGui
+// context while another thread may use a different one (the GUI plus an off-screen recorder)
+// holds this mutex from ImGui::SetCurrentContext/NewFrame until ImGui_ImplOpenGL3_RenderDrawData.
+std::mutex& imgui_context_mutex();
 
 struct RenderSettings {
   ColorField field = ColorField::kDamage;
@@ -26,17 +39,20 @@ struct RenderSettings {
   bool show_trails = false;
   bool show_overlay = true;        // time, scene name, colour legend
   float particle_scale = 1.0f;     // disc diameter in grid spacings
+  int trail_length = 400;          // points kept per trail (probes and rigid-body centres)
   float background[3] = {0.12f, 0.12f, 0.14f};
 };
 
 class Renderer {
  public:
-  // Loads shaders (shaders/) and colour maps (assets/) from the resource root.
+  // Loads shaders (shaders/) and colour maps (assets/colormaps/*.png) from the resource root
+  // (find_resource_root() gives the usual one).
   // Requires a current OpenGL 3.3 core context. Throws std::runtime_error with the path on failure.
   explicit Renderer(const std::string& resource_root);
   ~Renderer();
 
-  // Draws the scene into the current framebuffer (viewport width x height pixels).
+  // Draws the scene into the current framebuffer (viewport width x height pixels). Throws
+  // std::runtime_error for an unknown colour map name (colormap_names() lists the valid ones).
   void draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings,
             int width, int height);
   // Draws the overlay (time, scene name, colour legend) with Dear ImGui's draw lists;
@@ -46,6 +62,10 @@ class Renderer {
   float last_range_min() const;
   float last_range_max() const;
   std::vector<std::string> colormap_names() const;
+  // The colour map as 256 RGBA entries (for legends drawn elsewhere); throws for unknown names.
+  const std::vector<unsigned char>& colormap_table(const std::string& name) const;
+  // Forgets the trails (also done automatically when time goes back or the scene changes).
+  void clear_trails();
 
  private:
   struct Impl;

@@ -1,0 +1,213 @@
+#include "render/frame_writer.h"
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "core/error.h"
+
+extern char** environ;
+
+namespace periflex {
+
+namespace fs = std::filesystem;
+
+// ---------------------------------------------------------------------------
+// PNG sequence
+
+PngSequenceWriter::PngSequenceWriter(std::string dir, int compression_level)
+    : dir_(std::move(dir)), level_(compression_level) {
+  std::error_code ec;
+  fs::create_directories(dir_, ec);
+  if (ec || !fs::is_directory(dir_))
+    throw std::runtime_error("cannot create frames folder " + dir_ + ": " + ec.message());
+}
+
+std::string PngSequenceWriter::frame_path(long i) const {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06ld.png", i);
+  return (fs::path(dir_) / name).string();
+}
+
+void PngSequenceWriter::write_numbered(long i, const RgbaImage& frame) const {
+  write_png(frame_path(i), frame, level_);
+}
+
+void PngSequenceWriter::write(const RgbaImage& frame) {
+  write_numbered(count_, frame);
+  ++count_;
+}
+
+// ---------------------------------------------------------------------------
+// ffmpeg discovery
+
+std::string find_ffmpeg(const std::string& path_list) {
+  std::string paths = path_list;
+  if (paths.empty()) {
+    const char* env = std::getenv("PATH");
+    paths = env ? env : "/usr/local/bin:/usr/bin:/bin";
+  }
+  // the first executable regular file named ffmpeg along the list
+  std::stringstream ss(paths);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) continue;
+    const fs::path candidate = fs::path(dir) / "ffmpeg";
+    std::error_code ec;
+    if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
+  }
+  return "";
+}
+
+void check_movie_output(const std::string& movie_path, const std::string& option) {
+  SourceLocation where;
+  where.key = option;
+  if (find_ffmpeg().empty())
+    throw InputError(where, "writing " + movie_path + " needs ffmpeg, which is not on PATH; install it "
+                     "(apt-get install ffmpeg) or write PNG frames instead");
+  fs::path parent = fs::path(movie_path).parent_path();
+  if (parent.empty()) parent = ".";
+  std::error_code ec;
+  if (!fs::is_directory(parent, ec))
+    throw InputError(where, "the folder of " + movie_path + " does not exist");
+  if (::access(parent.c_str(), W_OK) != 0)
+    throw InputError(where, "the folder of " + movie_path + " is not writable");
+}
+
+// ---------------------------------------------------------------------------
+// MP4 through ffmpeg
+
+Mp4Writer::Mp4Writer(std::string path, int width, int height, double fps, const std::string& ffmpeg)
+    : path_(std::move(path)), width_(width), height_(height) {
+  const std::string exe = ffmpeg.empty() ? find_ffmpeg() : ffmpeg;
+  if (exe.empty()) {
+    SourceLocation where;
+    where.key = "movie";
+    throw InputError(where, "writing " + path_ + " needs ffmpeg, which is not on PATH");
+  }
+  if (width <= 0 || height <= 0 || !(fps > 0.0))
+    throw std::runtime_error("movie " + path_ + ": invalid size or frame rate");
+
+  // ffmpeg's messages go to a log file so that a failure can be explained
+  char log_template[] = "/tmp/periflex-ffmpeg-XXXXXX";
+  const int log_fd = ::mkstemp(log_template);
+  if (log_fd < 0) throw std::runtime_error(std::string("cannot create ffmpeg log: ") + std::strerror(errno));
+  log_path_ = log_template;
+
+  // a socket rather than a pipe: send() with MSG_NOSIGNAL reports a dead ffmpeg as EPIPE
+  // instead of killing the whole program with SIGPIPE
+  int sv[2];
+  if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, sv) != 0) {
+    ::close(log_fd);
+    throw std::runtime_error(std::string("cannot create ffmpeg input socket: ") + std::strerror(errno));
+  }
+
+  char size[64], rate[32], gop[32];
+  std::snprintf(size, sizeof size, "%dx%d", width, height);
+  std::snprintf(rate, sizeof rate, "%.6g", fps);
+  std::snprintf(gop, sizeof gop, "%d", std::max(1, static_cast<int>(fps + 0.5)));
+  std::vector<std::string> args = {
+      exe, "-hide_banner", "-loglevel", "error", "-y",
+      "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size, "-r", rate, "-i", "-",
+      "-an", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+      "-c:v", "libx264", "-preset", "veryfast", "-g", gop, "-pix_fmt", "yuv420p",
+      "-movflags", "frag_keyframe+empty_moov+default_base_moof", path_};
+  // input "-" also tells ffmpeg not to read keyboard commands from it
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, sv[1], STDIN_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
+  const int rc = ::posix_spawn(&pid_, exe.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(sv[1]);
+  ::close(log_fd);
+  if (rc != 0) {
+    ::close(sv[0]);
+    pid_ = -1;
+    throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
+  }
+  fd_ = sv[0];
+}
+
+Mp4Writer::~Mp4Writer() {
+  try {
+    close();
+  } catch (...) {
+    // a destructor cannot report; callers who care call close() themselves
+  }
+}
+
+std::string Mp4Writer::fail_message(const std::string& what) const {
+  // the last few lines of ffmpeg's log say why it stopped
+  std::ifstream log(log_path_);
+  std::string line, tail;
+  std::vector<std::string> lines;
+  while (std::getline(log, line)) lines.push_back(line);
+  for (size_t i = lines.size() > 5 ? lines.size() - 5 : 0; i < lines.size(); ++i) tail += "\n  " + lines[i];
+  return "movie " + path_ + ": " + what + (tail.empty() ? "" : "; ffmpeg says:" + tail);
+}
+
+void Mp4Writer::write(const RgbaImage& frame) {
+  if (fd_ < 0) throw std::runtime_error("movie " + path_ + ": write after close");
+  if (frame.width != width_ || frame.height != height_)
+    throw std::runtime_error("movie " + path_ + ": frame is " + std::to_string(frame.width) + "x" +
+                             std::to_string(frame.height) + ", expected " + std::to_string(width_) + "x" +
+                             std::to_string(height_));
+  // send the whole frame, resuming after partial writes
+  const uint8_t* data = frame.pixels.data();
+  size_t left = frame.pixels.size();
+  while (left > 0) {
+    const ssize_t n = ::send(fd_, data, left, MSG_NOSIGNAL);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int e = errno;
+      throw std::runtime_error(fail_message(std::string("ffmpeg stopped reading frames (") + std::strerror(e) + ")"));
+    }
+    data += n;
+    left -= static_cast<size_t>(n);
+  }
+  ++count_;
+}
+
+void Mp4Writer::close() {
+  if (pid_ < 0) return;
+  // end of input tells ffmpeg to finish the file
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+  int status = 0;
+  pid_t r;
+  do {
+    r = ::waitpid(pid_, &status, 0);
+  } while (r < 0 && errno == EINTR);
+  pid_ = -1;
+  const bool ok = r > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  if (!ok) {
+    const std::string why = WIFSIGNALED(status) ? "ffmpeg was killed by signal " + std::to_string(WTERMSIG(status))
+                                                : "ffmpeg exited with status " + std::to_string(WEXITSTATUS(status));
+    const std::string message = fail_message(why);
+    std::remove(log_path_.c_str());
+    throw std::runtime_error(message);
+  }
+  std::remove(log_path_.c_str());
+}
+
+}  // namespace periflex

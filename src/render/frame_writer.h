@@ -1,0 +1,80 @@
+// Writers that turn a stream of RGBA frames into files: a numbered PNG sequence or an MP4 movie
+// encoded by an ffmpeg child process. They need no GL, so the GUI can record from its window and
+// the off-screen recorder from its framebuffer with the same code.
+#pragma once
+
+#include <string>
+#include <sys/types.h>
+
+#include "render/image.h"
+
+namespace periflex {
+
+// Common interface: write frames in order, then close (which reports late failures).
+class FrameWriter {
+ public:
+  virtual ~FrameWriter() = default;
+  // Appends one frame. Throws std::runtime_error with a clear reason on failure.
+  virtual void write(const RgbaImage& frame) = 0;
+  // Finishes the output; throws when it could not be completed. Safe to call twice.
+  virtual void close() = 0;
+  // Frames accepted so far.
+  virtual long frames_written() const = 0;
+};
+
+// DIR/frame_000000.png, DIR/frame_000001.png, ... Each file appears complete or not at all
+// (written under a temporary name, then renamed). The folder is created when missing.
+class PngSequenceWriter : public FrameWriter {
+ public:
+  // compression_level: stb's zlib level, 1 (fastest) .. 9 (smallest).
+  explicit PngSequenceWriter(std::string dir, int compression_level = 4);
+  void write(const RgbaImage& frame) override;
+  void close() override {}
+  long frames_written() const override { return count_; }
+  // Path of frame number i.
+  std::string frame_path(long i) const;
+  // Writes frame number i (any order; several threads may write different numbers at once).
+  void write_numbered(long i, const RgbaImage& frame) const;
+
+ private:
+  std::string dir_;
+  int level_;
+  long count_ = 0;
+};
+
+// Absolute path of the ffmpeg executable found on `path_list` (a PATH-style, colon-separated list;
+// empty means the PATH environment variable), or an empty string when there is none.
+std::string find_ffmpeg(const std::string& path_list = "");
+
+// Checks before any simulation starts that a movie can be written to `movie_path`: ffmpeg exists
+// and the folder is writable. Throws periflex::InputError (exit code 2) keyed by `option`
+// (e.g. "--movie") with the remedy in the message.
+void check_movie_output(const std::string& movie_path, const std::string& option = "--movie");
+
+// H.264 MP4 written by ffmpeg reading raw RGBA frames from a socket on its standard input.
+// The movie is a fragmented MP4 (one fragment per keyframe, one keyframe per second), so a run
+// killed part-way leaves a file that plays up to its last complete second. Odd sizes are padded
+// to even ones (yuv420p needs them).
+class Mp4Writer : public FrameWriter {
+ public:
+  // Starts ffmpeg. Throws periflex::InputError when ffmpeg is missing, std::runtime_error when it
+  // cannot be started.
+  Mp4Writer(std::string path, int width, int height, double fps, const std::string& ffmpeg = "");
+  ~Mp4Writer() override;
+  // Throws std::runtime_error (with the end of ffmpeg's log) when ffmpeg has died or the frame
+  // size differs from the one given at construction.
+  void write(const RgbaImage& frame) override;
+  // Closes ffmpeg's input and waits for it; throws when it exits with an error.
+  void close() override;
+  long frames_written() const override { return count_; }
+
+ private:
+  std::string fail_message(const std::string& what) const;
+  std::string path_, log_path_;
+  int width_, height_;
+  int fd_ = -1;
+  pid_t pid_ = -1;
+  long count_ = 0;
+};
+
+}  // namespace periflex

@@ -1,0 +1,73 @@
+#include "render/gl.h"
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace periflex {
+
+namespace {
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read shader " + path + " (is PERIFLEX_ROOT right?)");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+GLuint compile(GLenum type, const std::string& path) {
+  const std::string source = read_text(path);
+  const char* text = source.c_str();
+  GLuint shader = glCreateShader(type);
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {0};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    glDeleteShader(shader);
+    throw std::runtime_error("shader " + path + " does not compile:\n" + log);
+  }
+  return shader;
+}
+
+}  // namespace
+
+GLuint load_program(const std::string& vertex_path, const std::string& fragment_path) {
+  const GLuint vs = compile(GL_VERTEX_SHADER, vertex_path);
+  GLuint fs = 0;
+  try {
+    fs = compile(GL_FRAGMENT_SHADER, fragment_path);
+  } catch (...) {
+    glDeleteShader(vs);
+    throw;
+  }
+  GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {0};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw std::runtime_error("shaders " + vertex_path + " + " + fragment_path + " do not link:\n" + log);
+  }
+  return program;
+}
+
+void check_gl(const char* where) {
+  const GLenum e = glGetError();
+  if (e != GL_NO_ERROR) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", e);
+    throw std::runtime_error(std::string("OpenGL error ") + code + " in " + where);
+  }
+}
+
+}  // namespace periflex

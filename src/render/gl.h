@@ -1,0 +1,21 @@
+// OpenGL 3.3 core entry points. libglvnd's libOpenGL exports them directly, so no loader is
+// needed; the same calls work under a GLFW window and under an EGL context.
+#pragma once
+
+#ifndef GL_GLEXT_PROTOTYPES
+#define GL_GLEXT_PROTOTYPES 1
+#endif
+#include <GL/glcorearb.h>
+
+#include <string>
+
+namespace periflex {
+
+// Compiles and links a program from two files; throws std::runtime_error with the file path and
+// the driver's log on failure.
+GLuint load_program(const std::string& vertex_path, const std::string& fragment_path);
+
+// Throws std::runtime_error naming `where` when glGetError reports an error.
+void check_gl(const char* where);
+
+}  // namespace periflex

@@ -174,9 +174,11 @@ int run_command(const RunOptions& requested) {
   std::printf("periflex: %s %s: t = %.6g s in %ld steps, %.2f s wall (solver %.2f s, %.0f steps/s)",
               scene.name.c_str(), exit_code == kExitOk ? "done" : "stopped", sim.time(), sim.step_count(),
               summary.wall_time, solver_seconds, solver_seconds > 0 ? sim.step_count() / solver_seconds : 0.0);
-  if (frames) {
+  if (frames && frame_stats.frames > 0) {
     std::printf("; %ld frames (render %.2f s, encode %.2f s) in %s", frame_stats.frames, frame_stats.render_seconds,
                 frame_stats.encode_seconds, frame_stats.where.c_str());
+  } else if (frames) {
+    std::printf("; screenshot in %s", frame_stats.where.c_str());
   }
   std::printf("; outputs in %s\n", out_dir.c_str());
   return exit_code;

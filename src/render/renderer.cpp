@@ -80,7 +80,6 @@ struct Renderer::Impl {
   GLint p_projection = -1, p_radius = -1, p_pixel_world = -1, p_range = -1, p_colormap = -1, p_solid = -1,
         p_ring = -1;
   GLint s_projection = -1;
-  GLuint quad_vbo = 0;
   GLuint particle_vao = 0, particle_vbo = 0;
   GLuint attached_vao = 0, attached_vbo = 0;
   GLuint solid_vao = 0, solid_vbo = 0;
@@ -134,23 +133,14 @@ void Renderer::Impl::load_colormaps(const std::string& root) {
 }
 
 void Renderer::Impl::make_buffers() {
-  // one unit quad shared by the particle passes, drawn as a 4-vertex strip per instance
-  const float corners[8] = {-1.f, -1.f, 1.f, -1.f, -1.f, 1.f, 1.f, 1.f};
-  glGenBuffers(1, &quad_vbo);
-  glBindBuffer(GL_ARRAY_BUFFER, quad_vbo);
-  glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
-
+  // particles are points (one vertex each) sized in the vertex shader
   for (auto [vao, vbo] : {std::pair{&particle_vao, &particle_vbo}, std::pair{&attached_vao, &attached_vbo}}) {
     glGenVertexArrays(1, vao);
     glGenBuffers(1, vbo);
     glBindVertexArray(*vao);
-    glBindBuffer(GL_ARRAY_BUFFER, quad_vbo);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
     glBindBuffer(GL_ARRAY_BUFFER, *vbo);
     glEnableVertexAttribArray(1);
     glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
-    glVertexAttribDivisor(1, 1);
   }
 
   glGenVertexArrays(1, &solid_vao);
@@ -261,14 +251,13 @@ void Renderer::Impl::draw_particles(const Snapshot& s, const RenderSettings& set
   glBindBuffer(GL_ARRAY_BUFFER, particle_vbo);
   glBufferData(GL_ARRAY_BUFFER, instances.size() * sizeof(float), instances.data(), GL_STREAM_DRAW);
 
-  // one instanced draw per flexible body, each with its own disc size
+  // one draw per flexible body, each with its own disc size
+  glEnable(GL_PROGRAM_POINT_SIZE);
   auto draw_range = [&](size_t first, size_t count, double spacing) {
     if (count == 0) return;
     const double radius = 0.5 * spacing * settings.particle_scale;
     glUniform1f(p_radius, static_cast<float>(radius));
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float),
-                          reinterpret_cast<const void*>(first * 3 * sizeof(float)));
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count));
+    glDrawArrays(GL_POINTS, static_cast<GLint>(first), static_cast<GLsizei>(count));
   };
   if (s.geometry && !s.geometry->flex_bodies.empty()) {
     for (const auto& fb : s.geometry->flex_bodies) {
@@ -295,7 +284,7 @@ void Renderer::Impl::draw_particles(const Snapshot& s, const RenderSettings& set
   glUniform1f(p_radius, radius);
   glUniform4fv(p_solid, 1, kAttachedRing);
   glUniform1f(p_ring, std::clamp(static_cast<float>(1.5 * pixel_world / radius), 0.15f, 0.6f));
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(attached.size() / 3));
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(attached.size() / 3));
 }
 
 void Renderer::Impl::build_bodies(const Snapshot& s, bool virtual_bodies) {
@@ -414,7 +403,7 @@ Renderer::~Renderer() {
   // the context that created the objects must be current; deleting in another one is harmless
   glDeleteProgram(impl_->particle_program);
   glDeleteProgram(impl_->solid_program);
-  for (GLuint b : {impl_->quad_vbo, impl_->particle_vbo, impl_->attached_vbo, impl_->solid_vbo}) glDeleteBuffers(1, &b);
+  for (GLuint b : {impl_->particle_vbo, impl_->attached_vbo, impl_->solid_vbo}) glDeleteBuffers(1, &b);
   for (GLuint a : {impl_->particle_vao, impl_->attached_vao, impl_->solid_vao}) glDeleteVertexArrays(1, &a);
   for (auto& [name, cm] : impl_->colormaps) glDeleteTextures(1, &cm.texture);
 }

@@ -51,6 +51,7 @@ std::string vtu_document(const Snapshot& s) {
       out, "displacement", n, [&](size_t i) { return has_reference ? s.px[i] - geo->reference_x[i] : 0.0f; },
       [&](size_t i) { return has_reference ? s.py[i] - geo->reference_y[i] : 0.0f; });
   scalar_array(out, "Float32", "displacement_magnitude", n, [&](size_t i) { return at(s.displacement, i); });
+  vector_array(out, "velocity", n, [&](size_t i) { return at(s.vx, i); }, [&](size_t i) { return at(s.vy, i); });
   scalar_array(out, "Float32", "speed", n, [&](size_t i) { return at(s.speed, i); });
   scalar_array(out, "Float32", "damage", n, [&](size_t i) { return at(s.damage, i); });
   scalar_array(out, "Float32", "strain", n, [&](size_t i) { return at(s.strain, i); });

@@ -520,6 +520,8 @@ void Simulation::fill_snapshot(Snapshot& out) const {
   out.damage.clear();
   out.displacement.clear();
   out.speed.clear();
+  out.vx.clear();
+  out.vy.clear();
   out.strain.clear();
   out.bond_pairs.clear();
   std::vector<float> buffer;
@@ -535,6 +537,8 @@ void Simulation::fill_snapshot(Snapshot& out) const {
       out.py.push_back(static_cast<float>(y));
       out.displacement.push_back(static_cast<float>(std::hypot(x - ref[2 * p], y - ref[2 * p + 1])));
       out.speed.push_back(static_cast<float>(std::hypot(qd[off + 2 * p], qd[off + 2 * p + 1])));
+      out.vx.push_back(static_cast<float>(qd[off + 2 * p]));
+      out.vy.push_back(static_cast<float>(qd[off + 2 * p + 1]));
     }
     flex->damage(buffer);
     for (float d : buffer) out.max_damage = std::max(out.max_damage, static_cast<double>(d));

@@ -60,6 +60,7 @@ struct Snapshot {
   std::vector<float> damage;       // [0, 1]
   std::vector<float> displacement; // |x - X|
   std::vector<float> speed;        // |v|
+  std::vector<float> vx, vy;       // velocity components
   std::vector<float> strain;       // largest bond stretch
   std::vector<std::pair<int, int>> bond_pairs;  // intact bonds, only for small bodies
 

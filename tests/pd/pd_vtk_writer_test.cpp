@@ -22,6 +22,8 @@ Snapshot three_particles() {
   s.damage = {0.0f, 0.5f, 1.0f};
   s.displacement = {0.5f, 0.25f, 0.0f};
   s.speed = {3.0f, 2.0f, 1.0f};
+  s.vx = {3.0f, 0.0f, -1.0f};
+  s.vy = {0.0f, 2.0f, 0.0f};
   s.strain = {0.0f, 0.001f, 0.0f};
   return s;
 }
@@ -46,6 +48,8 @@ TEST(VtkWriter, ParticlesBecomeVertexCellsWithPointData) {
             (std::vector<std::string>{"0.5", "0", "0", "0", "0.25", "0", "0", "0", "0"}));
   EXPECT_EQ(array_values(doc, "damage"), (std::vector<std::string>{"0", "0.5", "1"}));
   EXPECT_EQ(array_values(doc, "speed"), (std::vector<std::string>{"3", "2", "1"}));
+  EXPECT_EQ(array_values(doc, "velocity"),
+            (std::vector<std::string>{"3", "0", "0", "0", "2", "0", "-1", "0", "0"}));
   EXPECT_EQ(array_values(doc, "connectivity"), (std::vector<std::string>{"0", "1", "2"}));
   EXPECT_EQ(array_values(doc, "offsets"), (std::vector<std::string>{"1", "2", "3"}));
   EXPECT_EQ(array_values(doc, "types"), (std::vector<std::string>{"1", "1", "1"}));  // VTK_VERTEX

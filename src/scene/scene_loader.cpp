@@ -40,16 +40,7 @@ SceneDef parse_scene(std::string_view toml_text, const std::string& display_path
   context.file = display_path;
 
   // TOML syntax first: toml++ reports the line and column of the first error
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, display_path);
-  } catch (const toml::parse_error& e) {
-    SourceLocation where;
-    where.file = display_path;
-    where.line = static_cast<int>(e.source().begin.line);
-    where.column = static_cast<int>(e.source().begin.column);
-    throw InputError(where, "TOML syntax error: " + std::string(e.description()));
-  }
+  toml::table root = parse_toml_located(toml_text, display_path);
 
   // overrides change the tree, so their values are checked like the file's
   apply_overrides(root, overrides, context);

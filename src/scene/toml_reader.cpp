@@ -46,6 +46,18 @@ std::string describe_type(const toml::node& node) {
   return "nothing";
 }
 
+toml::table parse_toml_located(std::string_view text, const std::string& display_path) {
+  try {
+    return toml::parse(text, display_path);
+  } catch (const toml::parse_error& e) {
+    SourceLocation where;
+    where.file = display_path;
+    where.line = static_cast<int>(e.source().begin.line);
+    where.column = static_cast<int>(e.source().begin.column);
+    throw InputError(where, "TOML syntax error: " + std::string(e.description()));
+  }
+}
+
 std::string format_number(double value) {
   std::ostringstream out;
   out.precision(10);

@@ -43,6 +43,9 @@ struct ReadContext {
   [[noreturn]] void fail(const toml::node* node, const std::string& key, const std::string& message) const;
 };
 
+// Parses TOML text; a syntax error becomes an InputError at its line and column in display_path.
+toml::table parse_toml_located(std::string_view text, const std::string& display_path);
+
 // "a string", "an integer", ... for messages.
 std::string describe_type(const toml::node& node);
 // Shortest faithful text of a number for messages.

@@ -15,19 +15,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-std::string format_g(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
-
-SourceLocation refine_location(const StudyDef& study, const std::string& key) {
-  SourceLocation where;
-  where.file = study.path;
-  where.key = key;
-  return where;
-}
-
 // The beam the quantities describe: length from the clamp to the free end, depth, material.
 struct Beam {
   double length = 0.0, depth = 0.0, youngs = 0.0, density = 0.0;
@@ -35,7 +22,7 @@ struct Beam {
 
 Beam beam_of(const StudyDef& study, const FlexBodyDef& body) {
   const auto refuse = [&](const std::string& what) {
-    throw InputError(refine_location(study, "refine.flex_body"), "a refine study needs " + what);
+    throw InputError(study_location(study, "refine.flex_body"), "a refine study needs " + what);
   };
   if (body.shape.kind != ShapeDef::Kind::kBox || body.shape.angle != 0.0)
     refuse("an unrotated box-shaped flexible body lying along x");
@@ -80,7 +67,7 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
   const SceneDef base = study_scene(study);
   result.scene_name = base.name;
   if (base.flex_bodies.empty())
-    throw InputError(refine_location(study, "study.scene"), "a refine study needs a scene with a [[flex_body]]");
+    throw InputError(study_location(study, "study.scene"), "a refine study needs a scene with a [[flex_body]]");
 
   // the flexible body, the probe, and what the answer should be
   int body_index = 0;
@@ -89,7 +76,7 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
     for (size_t k = 0; k < base.flex_bodies.size(); ++k)
       if (base.flex_bodies[k].name == study.refine.flex_body) body_index = static_cast<int>(k);
     if (body_index < 0)
-      throw InputError(refine_location(study, "refine.flex_body"), "no flexible body '" + study.refine.flex_body + "'");
+      throw InputError(study_location(study, "refine.flex_body"), "no flexible body '" + study.refine.flex_body + "'");
   }
   const FlexBodyDef& body = base.flex_bodies[body_index];
   const Beam beam = beam_of(study, body);
@@ -98,7 +85,7 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
     for (const ProbeDef& p : base.probes)
       if (p.body == body.name) { probe = p.name; break; }
   }
-  if (probe.empty()) throw InputError(refine_location(study, "refine.probe"), "the flexible body has no probe");
+  if (probe.empty()) throw InputError(study_location(study, "refine.probe"), "the flexible body has no probe");
 
   const bool wave = study.refine.quantity == "wave_speed";
   const double c = std::sqrt(beam.youngs / beam.density);
@@ -144,7 +131,7 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
           Simulation probe_sim(scene);
           dt = 0.5 * probe_sim.info().critical_time_step;
         }
-        if (!(dt > 0.0)) throw InputError(refine_location(study, "method.dt"), "no time step: give [[method]] dt");
+        if (!(dt > 0.0)) throw InputError(study_location(study, "method.dt"), "no time step: give [[method]] dt");
         scene.solver.dt = dt;
         row.dt = dt;
         scene.solver.end_time = 1.6 * extreme_at;
@@ -158,7 +145,7 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
         const auto columns = sim.probe_columns();
         for (size_t k = 0; k < columns.size(); ++k)
           if (columns[k] == "probe." + probe + (wave ? ".x" : ".y")) column = static_cast<int>(k);
-        if (column < 0) throw InputError(refine_location(study, "refine.probe"), "no probe '" + probe + "'");
+        if (column < 0) throw InputError(study_location(study, "refine.probe"), "no probe '" + probe + "'");
         // about 400 samples up to the expected extreme, taken between timed stretches of stepping
         const long every = std::max(1L, std::lround(extreme_at / 400.0 / dt));
         std::vector<double> times, values;

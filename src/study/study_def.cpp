@@ -55,21 +55,25 @@ int theoretical_order(const std::string& integrator) {
   return 0;
 }
 
+std::string format_g(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+SourceLocation study_location(const StudyDef& study, const std::string& key) {
+  SourceLocation where;
+  where.file = study.path;
+  where.key = key;
+  return where;
+}
+
 bool is_adaptive_integrator(const std::string& integrator) { return integrator == "dopri54"; }
 
 StudyDef parse_study(const std::string& toml_text, const std::string& display_path) {
   ReadContext context;
   context.file = display_path;
-  toml::table root;
-  try {
-    root = toml::parse(toml_text, display_path);
-  } catch (const toml::parse_error& e) {
-    SourceLocation where;
-    where.file = display_path;
-    where.line = static_cast<int>(e.source().begin.line);
-    where.column = static_cast<int>(e.source().begin.column);
-    throw InputError(where, std::string(e.description()));
-  }
+  toml::table root = parse_toml_located(toml_text, display_path);
 
   StudyDef study;
   study.path = display_path;

@@ -70,6 +70,10 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
 // Theoretical order of accuracy of a named integrator (0 when unknown).
 int theoretical_order(const std::string& integrator);
 // True for integrators that choose their own step from rtol / atol.
+// A number as ostream writes it by default (6 significant digits), for tables and labels.
+std::string format_g(double v);
+// The study file and a dotted key, for InputError.
+SourceLocation study_location(const StudyDef& study, const std::string& key);
 bool is_adaptive_integrator(const std::string& integrator);
 
 }  // namespace periflex

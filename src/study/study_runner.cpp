@@ -23,19 +23,6 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-std::string format_g(double v) {
-  std::ostringstream out;
-  out << v;
-  return out.str();
-}
-
-SourceLocation study_location(const StudyDef& study, const std::string& key) {
-  SourceLocation where;
-  where.file = study.path;
-  where.key = key;
-  return where;
-}
-
 // Which probes are compared: their index in the scene and their x, y columns in Sample::probe_values.
 struct ProbeSelection {
   std::vector<int> scene_index;

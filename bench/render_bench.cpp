@@ -56,7 +56,7 @@ void BM_DrawParticles(benchmark::State& state) {
   state.counters["frames_per_s"] = benchmark::Counter(state.iterations(), benchmark::Counter::kIsRate);
   state.counters["particles"] = static_cast<double>(snapshot.px.size());
 }
-BENCHMARK(BM_DrawParticles)->Args({100000, 4})->Args({250000, 4})->Args({250000, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DrawParticles)->Args({100000, 4})->Args({250000, 4})->Args({250000, 2})->Args({250000, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_RenderAndEncodePng(benchmark::State& state) {
   OffscreenRenderer renderer(1280, 720, static_cast<int>(state.range(1)));

@@ -16,6 +16,7 @@
 #include "app/sim_worker.h"
 #include "core/error.h"
 #include "core/resources.h"
+#include "render/view.h"
 
 namespace periflex {
 
@@ -60,7 +61,9 @@ int run_gui(const GuiOptions& options) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  glfwWindowHint(GLFW_SAMPLES, 4);
+  const int samples =
+      options.samples > 0 ? options.samples : default_samples(worker->status().info.particles);
+  glfwWindowHint(GLFW_SAMPLES, samples > 1 ? samples : 0);
   const std::string title = "periflex - " + worker->status().scene_name;
   GLFWwindow* window = glfwCreateWindow(std::max(320, options.width), std::max(240, options.height),
                                         title.c_str(), nullptr, nullptr);

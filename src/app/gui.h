@@ -15,6 +15,8 @@ struct GuiOptions {
   std::string screenshot;               // PNG of the last frame (scene and overlay, no panels)
   std::string script;                   // timed actions (see gui_script.h), or a file holding them
   int width = 1280, height = 800;       // window size in screen coordinates
+  // Multisamples of the window (1: off); -1 chooses by the first scene (default_samples).
+  int samples = -1;
 };
 
 // Opens the window and runs until it is closed (or, with frames > 0, for that many frames).

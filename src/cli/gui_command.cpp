@@ -47,6 +47,7 @@ int gui_command(const GuiCommandOptions& options) {
   gui.frames = options.frames;
   gui.screenshot = options.screenshot;
   gui.script = options.script;
+  gui.samples = options.samples;
   return run_gui(gui);
 #else
   throw InputError({"command line", 0, 0, "gui"},

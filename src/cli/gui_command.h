@@ -12,6 +12,7 @@ struct GuiCommandOptions {
   int frames = 0;          // 0: interactive
   std::string screenshot;  // PNG of the last frame
   std::string script;      // timed actions for scripted runs
+  int samples = -1;        // multisampling of the window; -1: chosen by scene size
 };
 
 int gui_command(const GuiCommandOptions& options);

@@ -83,6 +83,9 @@ int run_main(int argc, char** argv) {
       ->check(CLI::NonNegativeNumber);
   gui_cmd->add_option("--screenshot", gui.screenshot, "Write the last frame to this PNG");
   gui_cmd->add_option("--script", gui.script, "Timed actions, e.g. 'pause@5; step@6; resume@8'");
+  gui_cmd->add_option("--samples", gui.samples,
+                      "Multisamples of the window, 1 = off (default: 4, or off for 100k particles and more)")
+      ->check(CLI::Range(1, 16));
 
   StudyOptions study;
   auto* study_cmd = add_study_subcommand(app, study);

@@ -54,6 +54,8 @@ constexpr Rgba8 kSlider{240, 220, 120, 255}, kDriver{255, 120, 60, 255}, kAttach
 constexpr Rgba8 kSpring{140, 220, 140, 255}, kBond{200, 200, 210, 110}, kProbe{255, 235, 60, 255};
 constexpr Rgba8 kTrail{90, 200, 255, 255};
 constexpr float kAttachedRing[4] = {0.95f, 0.3f, 0.95f, 1.0f};
+// Below this disc diameter (pixels) a smoothed edge is mostly blur: plain squares instead.
+constexpr double kDenseDiscPixels = 2.5;
 // a few muted fills so neighbouring bodies can be told apart
 constexpr Rgba8 kBodyFills[] = {{84, 120, 170, 255}, {150, 110, 80, 255}, {96, 140, 110, 255},
                                 {130, 100, 150, 255}, {150, 140, 90, 255}, {90, 130, 140, 255}};
@@ -76,9 +78,10 @@ const std::vector<float>* field_values(const Snapshot& s, ColorField f) {
 }  // namespace
 
 struct Renderer::Impl {
-  GLuint particle_program = 0, solid_program = 0;
+  GLuint particle_program = 0, dense_program = 0, solid_program = 0;
   GLint p_projection = -1, p_radius = -1, p_pixel_world = -1, p_range = -1, p_colormap = -1, p_solid = -1,
         p_ring = -1;
+  GLint d_projection = -1, d_point_pixels = -1, d_range = -1, d_colormap = -1;
   GLint s_projection = -1;
   GLuint particle_vao = 0, particle_vbo = 0;
   GLuint attached_vao = 0, attached_vbo = 0;
@@ -257,6 +260,22 @@ void Renderer::Impl::draw_particles(const Snapshot& s, const RenderSettings& set
     if (count == 0) return;
     const double radius = 0.5 * spacing * settings.particle_scale;
     glUniform1f(p_radius, static_cast<float>(radius));
+    // discs under kDenseDiscPixels across: opaque squares as wide as the disc, no blending
+    const double disc_pixels = 2.0 * radius / pixel_world;
+    if (spacing > 0.0 && disc_pixels < kDenseDiscPixels) {
+      glUseProgram(dense_program);
+      glUniformMatrix4fv(d_projection, 1, GL_FALSE, projection);
+      glUniform2f(d_range, range_min, range_max);
+      glUniform1i(d_colormap, 0);
+      glUniform1f(d_point_pixels, static_cast<float>(std::max(1.0, std::ceil(disc_pixels))));
+      glDisable(GL_BLEND);
+      glDisable(GL_MULTISAMPLE);
+      glDrawArrays(GL_POINTS, static_cast<GLint>(first), static_cast<GLsizei>(count));
+      glEnable(GL_MULTISAMPLE);
+      glEnable(GL_BLEND);
+      glUseProgram(particle_program);
+      return;
+    }
     glDrawArrays(GL_POINTS, static_cast<GLint>(first), static_cast<GLsizei>(count));
   };
   if (s.geometry && !s.geometry->flex_bodies.empty()) {
@@ -393,6 +412,13 @@ Renderer::Renderer(const std::string& resource_root) : impl_(std::make_unique<Im
   impl_->p_colormap = glGetUniformLocation(p, "u_colormap");
   impl_->p_solid = glGetUniformLocation(p, "u_solid_color");
   impl_->p_ring = glGetUniformLocation(p, "u_ring");
+  impl_->dense_program =
+      load_program((shaders / "particles_dense.vert").string(), (shaders / "particles_dense.frag").string());
+  const GLuint d = impl_->dense_program;
+  impl_->d_projection = glGetUniformLocation(d, "u_projection");
+  impl_->d_point_pixels = glGetUniformLocation(d, "u_point_pixels");
+  impl_->d_range = glGetUniformLocation(d, "u_range");
+  impl_->d_colormap = glGetUniformLocation(d, "u_colormap");
   impl_->s_projection = glGetUniformLocation(impl_->solid_program, "u_projection");
   impl_->load_colormaps(resource_root);
   impl_->make_buffers();
@@ -402,6 +428,7 @@ Renderer::Renderer(const std::string& resource_root) : impl_(std::make_unique<Im
 Renderer::~Renderer() {
   // the context that created the objects must be current; deleting in another one is harmless
   glDeleteProgram(impl_->particle_program);
+  glDeleteProgram(impl_->dense_program);
   glDeleteProgram(impl_->solid_program);
   for (GLuint b : {impl_->particle_vbo, impl_->attached_vbo, impl_->solid_vbo}) glDeleteBuffers(1, &b);
   for (GLuint a : {impl_->particle_vao, impl_->attached_vao, impl_->solid_vao}) glDeleteVertexArrays(1, &a);

@@ -25,6 +25,12 @@ Bounds particle_bounds(const Snapshot& snapshot);
 Bounds snapshot_bounds(const Snapshot& snapshot);
 // The scene's initial bounds (SceneGeometry::bounds_min/max) when set, else snapshot_bounds.
 Bounds scene_bounds(const Snapshot& snapshot);
+// Multisamples a picture of `particles` particles gets unless the user chooses: 4 for smooth
+// edges, but off from kLargeSceneParticles on, where the software renderer (Mesa llvmpipe) pays
+// more for the samples than for the particles.
+constexpr long kLargeSceneParticles = 100000;
+inline int default_samples(long particles) { return particles < kLargeSceneParticles ? 4 : 1; }
+
 // A camera showing scene_bounds with a margin, for a viewport of width x height pixels.
 Camera fit_camera(const Snapshot& snapshot, int width, int height, double margin = 0.08);
 

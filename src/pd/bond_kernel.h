@@ -31,8 +31,11 @@ double bond_damping_power(const BondStore& bonds, const double* pos, const doubl
 long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const uint8_t* no_fail,
                            double& energy_released, const double* row_max = nullptr);
 
-// Whether the AVX2 row loops may be used when the CPU has them (default true). Turning them
-// off selects the portable loops, which agree to round-off; for tests and comparisons.
+// The widest row loops that may run when the CPU has them (default kAvx512). The loops agree
+// to round-off; narrower ones are for tests and comparisons.
+enum class VectorKernels { kPortable, kAvx2, kAvx512 };
+void set_vector_kernels(VectorKernels widest);
+// set_vector_kernels(enabled ? kAvx512 : kPortable).
 void set_vector_kernels_enabled(bool enabled);
 
 // Largest stretch over the intact bonds of each particle (0 without intact bonds).

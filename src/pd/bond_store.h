@@ -2,8 +2,16 @@
 // stored once per direction (i -> j in row i, j -> i in row j) so each particle gathers its
 // own force without atomics; both copies hold bit-identical data and therefore compute the
 // same stretch and break together.
+//
+// The force loop streams these arrays every step, so a stored direction holds only what it
+// must: the neighbour (4 bytes), the stiffness in single precision (4 bytes: a relative rounding
+// of 6e-8 of a material constant, the same for both copies, so forces stay equal and opposite)
+// and the squared grid offset di^2 + dj^2 (2 bytes), from which the reference length follows
+// exactly as grid_spacing sqrt(di^2 + dj^2). A reference length itself stays in double precision:
+// rounding it would pre-strain every bond.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -11,19 +19,31 @@
 namespace periflex {
 
 struct BondStore {
-  std::vector<int64_t> row;        // size n + 1: bonds of particle i are [row[i], row[i+1])
-  std::vector<int32_t> neighbor;   // j of each bond
-  std::vector<double> inv_length;  // 1 / |xi|, reference length from exact grid offsets
-  std::vector<double> stiffness;   // k = c w(|xi|) beta g V_i V_j [N]: pair force = k s; 0 once broken
-  std::vector<uint8_t> broken;     // 1 once broken (never heals)
+  std::vector<int64_t> row;            // size n + 1: bonds of particle i are [row[i], row[i+1])
+  std::vector<int32_t> neighbor;       // j of each bond
+  std::vector<uint16_t> length_class;  // di^2 + dj^2 of the grid offset from i to j
+  std::vector<float> stiffness;        // k = c w(|xi|) beta g V_i V_j [N]: pair force = k s; 0 once broken
+  std::vector<uint8_t> broken;         // 1 once broken (never heals)
+  double grid_spacing = 1.0;
+  std::vector<double> inv_length_table;  // 1 / |xi| per length class (index = di^2 + dj^2)
 
   int particle_count() const { return row.empty() ? 0 : static_cast<int>(row.size() - 1); }
   int64_t directed_count() const { return static_cast<int64_t>(neighbor.size()); }
+  // 1 / |xi| of stored direction b.
+  double inv_length(int64_t b) const { return inv_length_table[length_class[b]]; }
+  // Fills inv_length_table for every class up to the largest stored one.
+  void make_length_table() {
+    uint16_t largest = 0;
+    for (uint16_t c : length_class) largest = c > largest ? c : largest;
+    inv_length_table.assign(static_cast<size_t>(largest) + 1, 0.0);
+    for (size_t c = 1; c < inv_length_table.size(); ++c)
+      inv_length_table[c] = 1.0 / (grid_spacing * std::sqrt(static_cast<double>(c)));
+  }
   // Heap bytes held by the bond arrays and row offsets.
   size_t bytes() const {
     return row.capacity() * sizeof(int64_t) + neighbor.capacity() * sizeof(int32_t) +
-           inv_length.capacity() * sizeof(double) + stiffness.capacity() * sizeof(double) +
-           broken.capacity() * sizeof(uint8_t);
+           length_class.capacity() * sizeof(uint16_t) + stiffness.capacity() * sizeof(float) +
+           broken.capacity() * sizeof(uint8_t) + inv_length_table.capacity() * sizeof(double);
   }
 };
 

@@ -101,7 +101,8 @@ struct PdBody::Impl {
     const double v = volume.front();
     bonds.row.assign(count + 1, 0);
     bonds.neighbor.reserve(nl.col.size());
-    bonds.inv_length.reserve(nl.col.size());
+    bonds.length_class.reserve(nl.col.size());
+    bonds.grid_spacing = dx;
     k0.reserve(nl.col.size());
     nx2.reserve(nl.col.size());
     initial_weight.assign(count, 0.0);
@@ -119,7 +120,7 @@ struct PdBody::Impl {
         for (const NotchDef& notch : def.notches) cut = cut || segments_cross(pi, pj, notch.p1, notch.p2);
         if (cut) continue;
         bonds.neighbor.push_back(j);
-        bonds.inv_length.push_back(1.0 / r);
+        bonds.length_class.push_back(static_cast<uint16_t>(r2));
         k0.push_back(c * w * beta * v * v);
         nx2.push_back(double(di) * di / r2);
         initial_weight[i] += beta;
@@ -127,7 +128,8 @@ struct PdBody::Impl {
       bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
     }
     bonds.neighbor.shrink_to_fit();
-    bonds.inv_length.shrink_to_fit();
+    bonds.length_class.shrink_to_fit();
+    bonds.make_length_table();
     bonds.broken.assign(bonds.neighbor.size(), 0);
   }
 
@@ -149,8 +151,8 @@ struct PdBody::Impl {
           // linearised stretch n . H n: n_x^2 - n_y^2 / 3 along x, n_y^2 - n_x^2 / 3 along y
           const double cx = nx2[b], cy = 1.0 - cx;
           const double sx = cx - cy / 3.0, sy = cy - cx / 3.0;
-          wx += 0.25 * k0[b] / bonds.inv_length[b] * sx * sx;
-          wy += 0.25 * k0[b] / bonds.inv_length[b] * sy * sy;
+          wx += 0.25 * k0[b] / bonds.inv_length(b) * sx * sx;
+          wy += 0.25 * k0[b] / bonds.inv_length(b) * sy * sy;
         }
         if (wx > 0.0) gx[i] = w_cont * v / wx;
         if (wy > 0.0) gy[i] = w_cont * v / wy;
@@ -162,7 +164,7 @@ struct PdBody::Impl {
         const int32_t j = bonds.neighbor[b];
         const double mean_x = 0.5 * (gx[i] + gx[j]), mean_y = 0.5 * (gy[i] + gy[j]);
         const double cx = nx2[b], cy = 1.0 - cx;
-        bonds.stiffness[b] = k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y));
+        bonds.stiffness[b] = static_cast<float>(k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y)));
       }
     }
   }
@@ -238,6 +240,9 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   require(def.grid_spacing > 0.0, "grid_spacing", "grid_spacing must be positive");
   require(def.thickness > 0.0, "thickness", "thickness must be positive");
   require(def.horizon_ratio >= 1.0, "horizon_ratio", "horizon_ratio must be at least 1");
+  // bonds store their squared grid offset in 16 bits
+  require(def.horizon_ratio <= kMaxHorizonRatio, "horizon_ratio",
+          "horizon_ratio must be at most " + std::to_string(int(kMaxHorizonRatio)));
   require(mat.youngs_modulus > 0.0, "material.youngs_modulus", "youngs_modulus must be positive");
   require(mat.density > 0.0, "material.density", "density must be positive");
   require(mat.fracture_energy >= 0.0, "material.fracture_energy", "fracture_energy must not be negative");
@@ -353,7 +358,7 @@ double PdBody::critical_time_step() const {
   double dt = std::numeric_limits<double>::infinity();
   for (int i = 0; i < m.n(); ++i) {
     double sum = 0.0;
-    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) sum += b.stiffness[k] * b.inv_length[k];
+    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) sum += double(b.stiffness[k]) * b.inv_length(k);
     if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * m.mass[i] / sum));
   }
   return dt;
@@ -472,8 +477,8 @@ void PdBody::strain_energy_density(const Eigen::VectorXd& q, std::vector<double>
     for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) {
       const int32_t j = b.neighbor[k];
       const double dx = p[2 * j] - p[2 * i], dy = p[2 * j + 1] - p[2 * i + 1];
-      const double s = std::sqrt(dx * dx + dy * dy) * b.inv_length[k] - 1.0;
-      sum += 0.25 * b.stiffness[k] * s * s / b.inv_length[k];
+      const double s = std::sqrt(dx * dx + dy * dy) * b.inv_length(k) - 1.0;
+      sum += 0.25 * double(b.stiffness[k]) * s * s / b.inv_length(k);
     }
     out[i] = sum / m.volume[i];
   }

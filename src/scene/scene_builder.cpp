@@ -421,6 +421,10 @@ class SceneBuilder {
     if (flex.horizon_ratio < 1.0)
       in.fail("horizon_ratio", "must be at least 1 (a horizon smaller than the grid spacing has no bonds), found " +
               format_number(flex.horizon_ratio));
+    if (flex.horizon_ratio > kMaxHorizonRatio)
+      in.fail("horizon_ratio", "must be at most " + format_number(kMaxHorizonRatio) +
+                                   " (each particle would have hundreds of thousands of bonds), found " +
+                                   format_number(flex.horizon_ratio));
     // refuse absurd grids before anything is allocated
     const double particles = shape_area(flex.shape) / (flex.grid_spacing * flex.grid_spacing);
     if (!(particles <= kMaxParticlesPerFlexBody)) {

@@ -159,6 +159,10 @@ struct RegionLoadDef {
   SourceLocation where;
 };
 
+// Largest horizon / grid spacing a flexible body may have (bonds keep their squared grid offset
+// in 16 bits; far beyond any useful horizon, which is 3 to 4).
+constexpr double kMaxHorizonRatio = 100.0;
+
 struct FlexBodyDef {
   std::string name;
   ShapeDef shape;                 // box, circle or polygon

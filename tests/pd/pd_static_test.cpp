@@ -50,7 +50,7 @@ TEST(PdBonds, EveryBondIsStoredInBothDirectionsWithIdenticalData) {
       const auto it = std::find(begin, end, i);
       ASSERT_NE(it, end);
       const int64_t back = it - b.neighbor.begin();
-      EXPECT_EQ(b.inv_length[k], b.inv_length[back]);
+      EXPECT_EQ(b.length_class[k], b.length_class[back]);
       EXPECT_EQ(b.stiffness[k], b.stiffness[back]);
     }
   }
@@ -166,7 +166,7 @@ TEST(PdElasticity, BondForcesAcrossACutRecoverYoungsModulus) {
       if (x[2 * j] < 0.0) continue;
       const double dxq = q[2 * j] - q[2 * i], dyq = q[2 * j + 1] - q[2 * i + 1];
       const double len = std::hypot(dxq, dyq);
-      fx += b.stiffness[k] * (len * b.inv_length[k] - 1.0) * dxq / len;
+      fx += double(b.stiffness[k]) * (len * b.inv_length(k) - 1.0) * dxq / len;
     }
   }
   const double sigma = fx / (rows * dx * t);
@@ -282,7 +282,8 @@ TEST(PdStableStep, CriticalStepMatchesSillingAskariForAnInteriorParticle) {
       if ((a || b) && a * a + b * b <= 9) sum_inv += 1.0 / (1e-3 * std::sqrt(a * a + b * b));
   const double c = micromodulus(72e9, 1e-3, 3e-3, false), v = 1e-6 * 1e-3;
   const double expected = std::sqrt(2.0 * 2440.0 / (c * v * sum_inv));
-  EXPECT_NEAR(body->critical_time_step() / expected, 1.0, 1e-12);
+  // 1e-7: bond stiffnesses are stored in single precision (relative rounding up to 6e-8 each)
+  EXPECT_NEAR(body->critical_time_step() / expected, 1.0, 1e-7);
 }
 
 TEST(PdInput, RefusesHugeGridsWithTheEstimatedCount) {
@@ -436,15 +437,47 @@ Perturbed perturbed_plate(double bond_damping, double global_damping) {
 }
 
 TEST(PdKernel, VectorAndPortableLoopsAgreeToRoundOff) {
-  // same formula, different summation order: 1e-12 of the largest force component
-  for (double eta : {0.0, 50.0}) {
-    Perturbed p = perturbed_plate(eta, 0.0);
-    Eigen::VectorXd g_vec = Eigen::VectorXd::Zero(p.q.size()), g_port = g_vec;
-    p.body->add_forces(p.q, p.qd, 0.0, g_vec);
-    set_vector_kernels_enabled(false);
-    p.body->add_forces(p.q, p.qd, 0.0, g_port);
-    set_vector_kernels_enabled(true);
-    EXPECT_LT((g_vec - g_port).cwiseAbs().maxCoeff(), 1e-12 * g_port.cwiseAbs().maxCoeff()) << eta;
+  // same formula, different summation order (and, in the AVX-512 loops, 1/|y| refined from an
+  // estimate): 1e-12 of the largest force component. Each width the CPU lacks runs the next
+  // narrower loop, so the comparison then holds trivially.
+  for (VectorKernels width : {VectorKernels::kAvx2, VectorKernels::kAvx512}) {
+    for (double eta : {0.0, 50.0}) {
+      Perturbed p = perturbed_plate(eta, 0.0);
+      Eigen::VectorXd g_vec = Eigen::VectorXd::Zero(p.q.size()), g_port = g_vec;
+      set_vector_kernels(width);
+      p.body->add_forces(p.q, p.qd, 0.0, g_vec);
+      set_vector_kernels(VectorKernels::kPortable);
+      p.body->add_forces(p.q, p.qd, 0.0, g_port);
+      set_vector_kernels(VectorKernels::kAvx512);
+      EXPECT_LT((g_vec - g_port).cwiseAbs().maxCoeff(), 1e-12 * g_port.cwiseAbs().maxCoeff())
+          << "width " << static_cast<int>(width) << ", eta " << eta;
+    }
+  }
+}
+
+TEST(PdKernel, RowMaximaOfTheForceLoopsMatchTheExactStretch) {
+  // the force loops' by-product row maxima let the fracture pass skip rows; they must agree
+  // with the exact stretch (max_bond_stretch at the same positions) to far below any s0
+  for (VectorKernels width : {VectorKernels::kPortable, VectorKernels::kAvx2, VectorKernels::kAvx512}) {
+    Perturbed p = perturbed_plate(0.0, 0.0);
+    set_vector_kernels(width);
+    std::vector<double> most(p.body->particle_count());
+    Eigen::VectorXd g = Eigen::VectorXd::Zero(p.q.size());
+    add_bond_forces(p.body->bonds(), p.q.data(), g.data(), most.data());
+    set_vector_kernels(VectorKernels::kAvx512);
+    const BondStore& b = p.body->bonds();
+    double worst = 0.0;
+    for (int i = 0; i < b.particle_count(); ++i) {
+      double exact = -1.0;
+      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) {
+        const int j = b.neighbor[k];
+        const double dx = p.q[2 * j] - p.q[2 * i], dy = p.q[2 * j + 1] - p.q[2 * i + 1];
+        if (b.stiffness[k] > 0.0f) exact = std::max(exact, std::sqrt(dx * dx + dy * dy) * b.inv_length(k) - 1.0);
+      }
+      worst = std::max(worst, std::abs(most[i] - exact));
+    }
+    // a few units in the last place of a stretch near 1e-4; far below the fracture pass's slack
+    EXPECT_LT(worst, 1e-13) << static_cast<int>(width);
   }
 }
 

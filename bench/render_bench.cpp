@@ -1,8 +1,7 @@
 // Off-screen drawing and recording speed on the software renderer (Mesa llvmpipe through EGL):
 //   BM_DrawParticles/N          draw N particles at 1280x720 (goal: 250k at >= 30 frames/s)
-//   BM_RenderAndEncodePng/N     draw, read back and PNG-encode N particles at 1280x720
-//                               (goal: 100k at >= 20 frames/s with encoding in its own thread;
-//                               this measures the two serially, so it is a lower bound)
+//   BM_RenderAndEncodePng/N     draw, read back and PNG-encode N particles at 1280x720, serially
+//   BM_EncodePng/N              PNG-encode one rendered 1280x720 frame of N particles
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -67,12 +66,28 @@ void BM_RenderAndEncodePng(benchmark::State& state) {
   size_t bytes = 0;
   for (auto _ : state) {
     renderer.render(snapshot, camera, settings, image);
-    bytes += encode_png(image, 2).size();
+    bytes += encode_png(image).size();
   }
   benchmark::DoNotOptimize(bytes);
   state.counters["frames_per_s"] = benchmark::Counter(state.iterations(), benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_RenderAndEncodePng)->Args({100000, 4})->Args({100000, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// PNG encoding alone, of one rendered frame of N particles (no multisampling).
+void BM_EncodePng(benchmark::State& state) {
+  RgbaImage image;
+  {
+    OffscreenRenderer renderer(1280, 720, 1);
+    const Snapshot snapshot = plate_snapshot(static_cast<int>(state.range(0)));
+    renderer.render(snapshot, fit_camera(snapshot, 1280, 720), RenderSettings(), image);
+  }
+  size_t bytes = 0;
+  for (auto _ : state) bytes = encode_png(image).size();
+  state.counters["MB_per_s"] =
+      benchmark::Counter(static_cast<double>(image.pixels.size()) * state.iterations() / 1e6, benchmark::Counter::kIsRate);
+  state.counters["png_kB"] = static_cast<double>(bytes) / 1e3;
+}
+BENCHMARK(BM_EncodePng)->Arg(100000)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace periflex

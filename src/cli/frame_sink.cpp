@@ -97,7 +97,7 @@ class OffscreenFrameSink : public FrameSink {
       OffscreenRenderer renderer(options_.width, options_.height);
       std::unique_ptr<PngSequenceWriter> pngs;
       std::unique_ptr<Mp4Writer> movie;
-      if (!options_.frames_dir.empty()) pngs = std::make_unique<PngSequenceWriter>(options_.frames_dir, 2);
+      if (!options_.frames_dir.empty()) pngs = std::make_unique<PngSequenceWriter>(options_.frames_dir);
       if (!options_.movie_path.empty())
         movie = std::make_unique<Mp4Writer>(options_.movie_path, options_.width, options_.height, options_.fps);
       {

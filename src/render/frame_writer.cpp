@@ -27,8 +27,7 @@ namespace fs = std::filesystem;
 // ---------------------------------------------------------------------------
 // PNG sequence
 
-PngSequenceWriter::PngSequenceWriter(std::string dir, int compression_level)
-    : dir_(std::move(dir)), level_(compression_level) {
+PngSequenceWriter::PngSequenceWriter(std::string dir) : dir_(std::move(dir)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_))
@@ -42,7 +41,7 @@ std::string PngSequenceWriter::frame_path(long i) const {
 }
 
 void PngSequenceWriter::write_numbered(long i, const RgbaImage& frame) const {
-  write_png(frame_path(i), frame, level_);
+  write_png(frame_path(i), frame);
 }
 
 void PngSequenceWriter::write(const RgbaImage& frame) {

@@ -26,8 +26,7 @@ class FrameWriter {
 // (written under a temporary name, then renamed). The folder is created when missing.
 class PngSequenceWriter : public FrameWriter {
  public:
-  // compression_level: stb's zlib level, 1 (fastest) .. 9 (smallest).
-  explicit PngSequenceWriter(std::string dir, int compression_level = 4);
+  explicit PngSequenceWriter(std::string dir);
   void write(const RgbaImage& frame) override;
   void close() override {}
   long frames_written() const override { return count_; }
@@ -38,7 +37,6 @@ class PngSequenceWriter : public FrameWriter {
 
  private:
   std::string dir_;
-  int level_;
   long count_ = 0;
 };
 

@@ -1,7 +1,6 @@
 #include "render/image.h"
 
 #include <stb_image.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -9,8 +8,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <mutex>
 #include <stdexcept>
+
+#include "render/png_encoder.h"
 
 namespace periflex {
 
@@ -32,42 +32,18 @@ void flip_rows(RgbaImage& image) {
   }
 }
 
-namespace {
-
-// stb keeps the compression level in a global; guard it so encoders on several threads agree
-std::mutex& png_level_mutex() {
-  static std::mutex m;
-  return m;
+std::vector<uint8_t> encode_png(const RgbaImage& image) {
+  if (image.empty() || image.pixels.size() != static_cast<size_t>(image.width) * image.height * 4)
+    throw std::runtime_error("PNG encoding failed: the image is " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + " but holds " + std::to_string(image.pixels.size()) +
+                             " bytes");
+  return encode_png_rgba(image.pixels.data(), image.width, image.height);
 }
 
-void append_bytes(void* context, void* data, int size) {
-  auto* out = static_cast<std::vector<uint8_t>*>(context);
-  const auto* bytes = static_cast<const uint8_t*>(data);
-  out->insert(out->end(), bytes, bytes + size);
-}
-
-}  // namespace
-
-std::vector<uint8_t> encode_png(const RgbaImage& image, int compression_level) {
-  std::vector<uint8_t> out;
-  out.reserve(image.pixels.size() / 4);
-  int ok = 0;
-  {
-    // the level is read once at the start of the call, but the lock keeps it simple and safe
-    std::lock_guard<std::mutex> lock(png_level_mutex());
-    stbi_write_png_compression_level = std::clamp(compression_level, 1, 9);
-    ok = stbi_write_png_to_func(append_bytes, &out, image.width, image.height, 4, image.pixels.data(),
-                                image.width * 4);
-  }
-  if (!ok) throw std::runtime_error("PNG encoding failed for a " + std::to_string(image.width) + "x" +
-                                    std::to_string(image.height) + " image");
-  return out;
-}
-
-void write_png(const std::string& path, const RgbaImage& image, int compression_level) {
-  const std::vector<uint8_t> bytes = encode_png(image, compression_level);
+void write_png(const std::string& path, const RgbaImage& image) {
+  const std::vector<uint8_t> bytes = encode_png(image);
   const std::string tmp = path + ".tmp";
-  // write and flush the temporary file, checking every step: stb itself ignores write errors
+  // write and flush the temporary file, checking every step
   FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw std::runtime_error("cannot create " + tmp + ": " + std::strerror(errno));
   const size_t written = std::fwrite(bytes.data(), 1, bytes.size(), f);
@@ -94,6 +70,21 @@ RgbaImage read_png(const std::string& path) {
   if (!data) {
     const char* reason = stbi_failure_reason();
     throw std::runtime_error("cannot read image " + path + ": " + (reason ? reason : "unknown error"));
+  }
+  RgbaImage image;
+  image.width = w;
+  image.height = h;
+  image.pixels.assign(data, data + static_cast<size_t>(w) * h * 4);
+  stbi_image_free(data);
+  return image;
+}
+
+RgbaImage decode_png(const uint8_t* bytes, size_t size) {
+  int w = 0, h = 0, channels = 0;
+  unsigned char* data = stbi_load_from_memory(bytes, static_cast<int>(size), &w, &h, &channels, 4);
+  if (!data) {
+    const char* reason = stbi_failure_reason();
+    throw std::runtime_error(std::string("cannot decode PNG: ") + (reason ? reason : "unknown error"));
   }
   RgbaImage image;
   image.width = w;

@@ -2,6 +2,7 @@
 // renderer, the frame writers and the screenshot tests share: PNG read/write and comparison.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,14 +25,17 @@ struct RgbaImage {
 // Reverses the row order in place (OpenGL reads bottom row first).
 void flip_rows(RgbaImage& image);
 
-// Encodes to PNG at stb's compression level (1 fast .. 9 small).
-std::vector<uint8_t> encode_png(const RgbaImage& image, int compression_level = 8);
+// Encodes to PNG with the fast encoder of render/png_encoder.h (safe on any thread; opaque
+// pictures are stored as RGB).
+std::vector<uint8_t> encode_png(const RgbaImage& image);
 // Writes a PNG atomically: to "<path>.tmp" first, then renamed, so an interrupted run never
 // leaves a truncated file under the final name. Throws std::runtime_error naming the path and
 // the system's reason (disk full, no permission, missing folder).
-void write_png(const std::string& path, const RgbaImage& image, int compression_level = 8);
+void write_png(const std::string& path, const RgbaImage& image);
 // Reads any PNG as RGBA. Throws std::runtime_error naming the path when it cannot.
 RgbaImage read_png(const std::string& path);
+// Decodes a PNG held in memory as RGBA. Throws std::runtime_error when it cannot.
+RgbaImage decode_png(const uint8_t* bytes, size_t size);
 
 // Result of a per-pixel comparison.
 struct ImageDiff {

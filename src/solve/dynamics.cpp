@@ -156,6 +156,29 @@ void Dynamics::analyse(double t) {
                                   "it mass and inertia or constrain it further");
     }
   }
+  weight_ = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < nc; ++k) weight_[constrained_[k]] = weight_c_[k];
+
+  // attachments solved by elimination, and what stays in the matrix
+  condensed_.build(model_, active_index_, condense_);
+  reduced_col_.assign(n, -1);
+  reduced_cols_.clear();
+  for (int c : constrained_) {
+    if (condensed_.coordinate_condensed(c)) continue;
+    reduced_col_[c] = static_cast<int>(reduced_cols_.size());
+    reduced_cols_.push_back(c);
+  }
+  reduced_rows_.clear();
+  for (size_t k = 0; k < model_.constraints.size(); ++k) {
+    if (condensed_.block_condensed(k)) continue;
+    const ConstraintBlock& block = model_.constraints[k];
+    for (int r = 0; r < block.constraint->rows(); ++r) {
+      const int a = active_index_[block.first_row + r];
+      if (a >= 0) reduced_rows_.push_back(a);
+    }
+  }
+  std::sort(reduced_rows_.begin(), reduced_rows_.end());
+
   lambda_ = Eigen::VectorXd::Zero(active_rows());
   active_is_driver_.assign(active_rows(), 0);
   for (const auto& block : model_.constraints) {
@@ -196,12 +219,63 @@ void Dynamics::time_derivative_all(double t, const Eigen::VectorXd& q) {
   }
 }
 
-void Dynamics::velocity_residual(const Eigen::VectorXd& qd, Eigen::VectorXd& out) const {
-  const int m = active_rows();
-  out.resize(m);
-  for (int a = 0; a < m; ++a) out[a] = phi_t_all_[active_[a]];
-  for (const auto& e : local_j_) out[e.row()] += e.value() * qd[constrained_[e.col()]];
-  for (const auto& e : prescribed_j_) out[e.row()] += e.value() * qd[e.col()];
+void Dynamics::assemble_reduced(double t, const Eigen::VectorXd& q) {
+  // active row -> reduced row, rebuilt from reduced_rows_ (cheap next to the triplets)
+  std::vector<int>& row_of = active_index_work_;
+  row_of.assign(active_.size(), -1);
+  for (size_t r = 0; r < reduced_rows_.size(); ++r) row_of[reduced_rows_[r]] = static_cast<int>(r);
+  all_.clear();
+  for (size_t k = 0; k < model_.constraints.size(); ++k) {
+    if (condensed_.block_condensed(k)) continue;
+    const ConstraintBlock& block = model_.constraints[k];
+    block.constraint->jacobian(q, t, block.first_row, all_);
+  }
+  reduced_j_.clear();
+  prescribed_j_.clear();
+  for (const auto& e : all_) {
+    const int active = active_index_[e.row()];
+    if (active < 0) continue;
+    const int row = row_of[active];
+    const int col = reduced_col_[e.col()];
+    if (col >= 0) {
+      reduced_j_.emplace_back(row, col, e.value());
+    } else if (model_.is_prescribed[e.col()]) {
+      prescribed_j_.emplace_back(row, e.col(), e.value());
+    }
+  }
+  condensed_.update(q);
+}
+
+void Dynamics::velocity_residual_all(const Eigen::VectorXd& qd) {
+  nu_all_ = phi_t_all_;
+  for (const auto& e : reduced_j_) nu_all_[active_[reduced_rows_[e.row()]]] += e.value() * qd[reduced_cols_[e.col()]];
+  for (const auto& e : prescribed_j_) nu_all_[active_[reduced_rows_[e.row()]]] += e.value() * qd[e.col()];
+  condensed_.velocity_residual(qd, nu_all_.data());
+}
+
+bool Dynamics::solve_constrained(const Eigen::VectorXd& w, const double* a, const double* e, KktSolver& solver,
+                                 Eigen::VectorXd& z) {
+  const int nr = static_cast<int>(reduced_cols_.size()), mr = static_cast<int>(reduced_rows_.size());
+  diag_.resize(nr);
+  rhs_.resize(nr + mr);
+  for (int k = 0; k < nr; ++k) {
+    diag_[k] = w[reduced_cols_[k]];
+    rhs_[k] = a ? a[reduced_cols_[k]] : 0.0;
+  }
+  for (int r = 0; r < mr; ++r) rhs_[nr + r] = e[active_[reduced_rows_[r]]];
+  coupling_.clear();
+  if (!condensed_.empty()) {
+    condensed_.add_body_blocks(w, reduced_col_, diag_, coupling_);
+    condensed_.add_body_rhs(a, w, e, reduced_col_, rhs_);
+  }
+  if (nr > 0) {
+    if (!solver.factorize(diag_, reduced_j_, mr, &coupling_)) return false;
+    x_ = solver.solve(rhs_);
+    if (!x_.allFinite()) return false;
+    for (int k = 0; k < nr; ++k) z[reduced_cols_[k]] = x_[k];
+  }
+  condensed_.recover(e, z);
+  return true;
 }
 
 void Dynamics::throw_singular(double t, const Eigen::VectorXd& q, const std::string& during) {
@@ -279,41 +353,38 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
   for (int c : free_) qdd[c] = g_[c] / model_.mass[c];
   for (const auto& p : model_.prescribed) qdd[p.coordinate] = p.displacement.d2(t);
 
-  // constrained coordinates: the augmented system
+  // constrained coordinates: the augmented system, eliminated attachments condensed
   if (!constrained_.empty()) {
     start = Clock::now();
-    const int nc = constrained_coordinates();
     const int m = active_rows();
-    assemble_jacobian(t, q);
+    assemble_reduced(t, q);
     gamma_all_.resize(model_.constraint_rows);
     for (const auto& block : model_.constraints) {
       block.constraint->gamma(q, qd, t, gamma_all_.data() + block.first_row);
     }
     time_derivative_all(t, q);
-    velocity_residual(qd, jqd_);  // Phi_q qd + Phi_t
-    rhs_.resize(nc + m);
-    for (int k = 0; k < nc; ++k) rhs_[k] = g_[constrained_[k]];
-    for (int a = 0; a < m; ++a) rhs_[nc + a] = gamma_all_[active_[a]];
+    velocity_residual_all(qd);  // Phi_q qd + Phi_t
+    e_all_ = gamma_all_;
     // imposed accelerations move to the right-hand side
-    for (const auto& e : prescribed_j_) rhs_[nc + e.row()] -= e.value() * qdd[e.col()];
+    for (const auto& e : prescribed_j_) e_all_[active_[reduced_rows_[e.row()]]] -= e.value() * qdd[e.col()];
     // Baumgarte stabilisation: gamma - 2 alpha Phi_dot - beta^2 Phi
     if (correction_.method == CorrectionDef::Method::kBaumgarte && m > 0) {
       residual_all(t, q);
       const double a2 = 2.0 * correction_.alpha, b2 = correction_.beta * correction_.beta;
-      for (int a = 0; a < m; ++a) rhs_[nc + a] -= a2 * jqd_[a] + b2 * phi_all_[active_[a]];
+      for (int row : active_) e_all_[row] -= a2 * nu_all_[row] + b2 * phi_all_[row];
     }
-    if (!kkt_.factorize(mass_c_, local_j_, m)) throw_singular(t, q, "the acceleration solve");
-    x_ = kkt_.solve(rhs_);
-    if (!x_.allFinite()) throw_singular(t, q, "the acceleration solve");
-    for (int k = 0; k < nc; ++k) qdd[constrained_[k]] = x_[k];
-    lambda_ = x_.tail(m);
+    if (!solve_constrained(model_.mass, g_.data(), e_all_.data(), kkt_, qdd))
+      throw_singular(t, q, "the acceleration solve");
+    const int nr = reduced_coordinates();
+    for (int r = 0; r < reduced_rows(); ++r) lambda_[reduced_rows_[r]] = x_[nr + r];
+    condensed_.multipliers(model_.mass, qdd, g_.data(), active_index_, lambda_);
 
     // drivers do work -lambda (Phi_q qd) on the system (power of the reaction -Phi_q^T lambda)
     for (int a = 0; a < m; ++a) {
-      if (active_is_driver_[a]) driver -= lambda_[a] * (jqd_[a] - phi_t_all_[active_[a]]);
+      if (active_is_driver_[a]) driver -= lambda_[a] * (nu_all_[active_[a]] - phi_t_all_[active_[a]]);
     }
     // constraint forces on imposed coordinates are part of their reaction
-    for (const auto& e : prescribed_j_) g_[e.col()] -= e.value() * lambda_[e.row()];
+    for (const auto& e : prescribed_j_) g_[e.col()] -= e.value() * lambda_[reduced_rows_[e.row()]];
     constraint_seconds_ += since(start);
   }
   // imposed motions do the work of their reactions m qdd - g
@@ -326,18 +397,15 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
 
 double Dynamics::project_positions(double t, Eigen::VectorXd& q, double tolerance, int max_iterations) {
   if (active_.empty()) return 0.0;
-  const int nc = constrained_coordinates();
-  const int m = active_rows();
   double error = position_violation(t, q);
   // Newton on min (dq^T W dq) subject to Phi(q + dq) = 0
   for (int it = 0; it < max_iterations && error > tolerance; ++it) {
-    assemble_jacobian(t, q);
-    if (!projection_kkt_.factorize(weight_c_, local_j_, m)) throw_singular(t, q, "the position projection");
-    rhs_ = Eigen::VectorXd::Zero(nc + m);
-    for (int a = 0; a < m; ++a) rhs_[nc + a] = -phi_all_[active_[a]];
-    x_ = projection_kkt_.solve(rhs_);
-    if (!x_.allFinite()) throw_singular(t, q, "the position projection");
-    for (int k = 0; k < nc; ++k) q[constrained_[k]] += x_[k];
+    assemble_reduced(t, q);
+    e_all_ = -phi_all_;
+    dz_.setZero(model_.coordinate_count);
+    if (!solve_constrained(weight_, nullptr, e_all_.data(), projection_kkt_, dz_))
+      throw_singular(t, q, "the position projection");
+    for (int c : constrained_) q[c] += dz_[c];
     error = position_violation(t, q);
   }
   return error;
@@ -345,21 +413,18 @@ double Dynamics::project_positions(double t, Eigen::VectorXd& q, double toleranc
 
 double Dynamics::project_velocities(double t, const Eigen::VectorXd& q, Eigen::VectorXd& qd) {
   if (active_.empty()) return 0.0;
-  const int nc = constrained_coordinates();
-  const int m = active_rows();
-  assemble_jacobian(t, q);
+  assemble_reduced(t, q);
   time_derivative_all(t, q);
-  velocity_residual(qd, jqd_);
-  if (!projection_kkt_.factorize(weight_c_, local_j_, m)) throw_singular(t, q, "the velocity projection");
+  velocity_residual_all(qd);
   // the correction dqd solves [W J^T; J 0][dqd; mu] = [0; -(Phi_q qd + Phi_t)]
-  rhs_ = Eigen::VectorXd::Zero(nc + m);
-  rhs_.tail(m) = -jqd_;
-  x_ = projection_kkt_.solve(rhs_);
-  if (!x_.allFinite()) throw_singular(t, q, "the velocity projection");
+  e_all_ = -nu_all_;
+  dz_.setZero(model_.coordinate_count);
+  if (!solve_constrained(weight_, nullptr, e_all_.data(), projection_kkt_, dz_))
+    throw_singular(t, q, "the velocity projection");
   double change = 0.0;
-  for (int k = 0; k < nc; ++k) {
-    qd[constrained_[k]] += x_[k];
-    change = std::max(change, std::abs(x_[k]));
+  for (int c : constrained_) {
+    qd[c] += dz_[c];
+    change = std::max(change, std::abs(dz_[c]));
   }
   return change;
 }
@@ -374,10 +439,12 @@ double Dynamics::position_violation(double t, const Eigen::VectorXd& q) {
 
 double Dynamics::velocity_violation(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   if (active_.empty()) return 0.0;
-  assemble_jacobian(t, q);
+  assemble_reduced(t, q);
   time_derivative_all(t, q);
-  velocity_residual(qd, jqd_);
-  return jqd_.size() ? jqd_.cwiseAbs().maxCoeff() : 0.0;
+  velocity_residual_all(qd);
+  double worst = 0.0;
+  for (int row : active_) worst = std::max(worst, std::abs(nu_all_[row]));
+  return worst;
 }
 
 std::vector<std::string> Dynamics::nearly_dependent_blocks(double t, const Eigen::VectorXd& q,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "solve/condensed_attachments.h"
 #include "solve/integrator.h"
 #include "solve/kkt_solver.h"
 #include "solve/system_model.h"
@@ -38,6 +39,9 @@ class Dynamics final : public OdeSystem {
   bool has_constraints() const { return !active_.empty(); }
 
   void set_correction(const CorrectionDef& correction) { correction_ = correction; }
+  // Whether analyse() may solve rigid-flexible joints by elimination (default true; the full
+  // augmented system gives the same answer, slower; for tests and comparisons).
+  void set_condense_attachments(bool enabled) { condense_ = enabled; }
   const CorrectionDef& correction() const { return correction_; }
   void set_mouse_spring(const std::optional<MouseSpringForce>& spring) { mouse_ = spring; }
 
@@ -63,6 +67,11 @@ class Dynamics final : public OdeSystem {
   // Name of the block with the largest |Phi| at (t, q).
   std::string worst_constraint(double t, const Eigen::VectorXd& q);
 
+  // Rigid-flexible joints solved by elimination (see condensed_attachments.h): how many
+  // coordinates and equations stay in the matrix.
+  int reduced_coordinates() const { return static_cast<int>(reduced_cols_.size()); }
+  int reduced_rows() const { return static_cast<int>(reduced_rows_.size()); }
+
   // Wall-clock seconds in force evaluation and in the constraint solve.
   double force_seconds() const { return force_seconds_; }
   double constraint_seconds() const { return constraint_seconds_; }
@@ -75,8 +84,17 @@ class Dynamics final : public OdeSystem {
   void assemble_jacobian(double t, const Eigen::VectorXd& q);
   void residual_all(double t, const Eigen::VectorXd& q);   // phi_all_
   void time_derivative_all(double t, const Eigen::VectorXd& q);  // phi_t_all_
-  // Phi_q qd + Phi_t of the active rows (after assemble_jacobian and time_derivative_all).
-  void velocity_residual(const Eigen::VectorXd& qd, Eigen::VectorXd& out) const;
+  // The Jacobian of the rows that stay in the matrix, over the coordinates that stay
+  // (reduced_j_, and prescribed_j_ with reduced rows), and the eliminated joints at q.
+  void assemble_reduced(double t, const Eigen::VectorXd& q);
+  // nu_all_ = Phi_q qd + Phi_t by global row (after assemble_reduced and time_derivative_all).
+  void velocity_residual_all(const Eigen::VectorXd& qd);
+  // Solves W z + Phi_q^T mu = a, Phi_q z = e with W = diag(w) over the constrained coordinates,
+  // the eliminated joints condensed (after assemble_reduced). w and a by global coordinate
+  // (a null: zero), e by global row; z receives the constrained coordinates (global index) and
+  // x_ the reduced solution. False when the matrix is singular.
+  bool solve_constrained(const Eigen::VectorXd& w, const double* a, const double* e, KktSolver& solver,
+                         Eigen::VectorXd& z);
   [[noreturn]] void throw_singular(double t, const Eigen::VectorXd& q, const std::string& during);
   const std::string& block_of_row(int row) const;
 
@@ -93,11 +111,22 @@ class Dynamics final : public OdeSystem {
   std::vector<int> active_index_; // global row -> active index (-1 dropped)
   std::vector<char> active_is_driver_;  // per active row
   Eigen::VectorXd mass_c_, weight_c_;  // masses and projection weights of the constrained coordinates
+  Eigen::VectorXd weight_;             // projection weights by global coordinate
+
+  // the reduced system: what stays in the matrix once the eliminated joints are condensed
+  CondensedAttachments condensed_;
+  bool condense_ = true;
+  std::vector<int> reduced_col_;   // global coordinate -> reduced column (-1: not in the matrix)
+  std::vector<int> reduced_cols_;  // reduced column -> global coordinate
+  std::vector<int> reduced_rows_;  // reduced row -> active row
+  Triplets reduced_j_, coupling_;
+  Eigen::VectorXd diag_, e_all_, nu_all_, dz_;
+  std::vector<int> active_index_work_;
 
   // work arrays
   Triplets all_, local_j_, prescribed_j_;
   Eigen::VectorXd phi_all_, phi_t_all_, gamma_all_;
-  Eigen::VectorXd g_, q_work_, qd_work_, rhs_, x_, lambda_, jqd_;
+  Eigen::VectorXd g_, q_work_, qd_work_, rhs_, x_, lambda_;
   KktSolver kkt_, projection_kkt_;
 
   double force_seconds_ = 0.0, constraint_seconds_ = 0.0;

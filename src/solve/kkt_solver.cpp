@@ -5,7 +5,7 @@
 
 namespace periflex {
 
-bool KktSolver::factorize(const Eigen::VectorXd& w, const Triplets& jacobian, int m) {
+bool KktSolver::factorize(const Eigen::VectorXd& w, const Triplets& jacobian, int m, const Triplets* coupling) {
   const int n = static_cast<int>(w.size());
   // scaling: 1/sqrt(w) for coordinates with mass, then each equation to a unit largest entry
   scale_.resize(n + m);
@@ -21,7 +21,7 @@ bool KktSolver::factorize(const Eigen::VectorXd& w, const Triplets& jacobian, in
     std::vector<int> degree(n, 0);
     for (const auto& e : jacobian) ++degree[e.col()];
     if (std::any_of(degree.begin(), degree.end(), [](int d) { return d > kHubDegree; })) {
-      if (factorize_split(w, jacobian, m)) return true;
+      if (factorize_split(w, jacobian, m, coupling)) return true;
       split_failed_ = true;  // singular split: factorise the whole matrix from now on
     }
   }
@@ -31,6 +31,8 @@ bool KktSolver::factorize(const Eigen::VectorXd& w, const Triplets& jacobian, in
   triplets_.clear();
   triplets_.reserve(n + 2 * jacobian.size());
   for (int i = 0; i < n; ++i) triplets_.emplace_back(i, i, w[i] * scale_[i] * scale_[i]);
+  if (coupling)
+    for (const auto& e : *coupling) triplets_.emplace_back(e.row(), e.col(), e.value() * scale_[e.row()] * scale_[e.col()]);
   for (const auto& e : jacobian) {
     const double v = e.value() * scale_[e.col()] * scale_[n + e.row()];
     triplets_.emplace_back(n + e.row(), e.col(), v);
@@ -60,7 +62,8 @@ bool KktSolver::factorize_sparse(const Triplets& triplets, int size) {
   return lu_.info() == Eigen::Success;
 }
 
-bool KktSolver::factorize_split(const Eigen::VectorXd& w, const Triplets& jacobian, int m) {
+bool KktSolver::factorize_split(const Eigen::VectorXd& w, const Triplets& jacobian, int m,
+                                const Triplets* coupling) {
   const int n = static_cast<int>(w.size());
   std::vector<int> degree(n, 0);
   for (const auto& e : jacobian) ++degree[e.col()];
@@ -95,6 +98,8 @@ bool KktSolver::factorize_split(const Eigen::VectorXd& w, const Triplets& jacobi
     }
   };
   for (int i = 0; i < n; ++i) put(i, i, w[i] * scale_[i] * scale_[i]);
+  if (coupling)
+    for (const auto& e : *coupling) put(e.row(), e.col(), e.value() * scale_[e.row()] * scale_[e.col()]);
   for (const auto& e : jacobian) {
     const double v = e.value() * scale_[e.col()] * scale_[n + e.row()];
     put(n + e.row(), e.col(), v);

@@ -27,8 +27,9 @@ class KktSolver {
  public:
   // Assembles from the diagonal w (size n) and the triplets of J (rows local to the m active
   // equations, columns local to the n coordinates), and factorises. Returns false when the
-  // matrix is singular.
-  bool factorize(const Eigen::VectorXd& w, const Triplets& jacobian, int m);
+  // matrix is singular. `coupling`, when given, holds off-diagonal entries of W (both halves of
+  // a symmetric block, e.g. a rigid body that carries eliminated particles).
+  bool factorize(const Eigen::VectorXd& w, const Triplets& jacobian, int m, const Triplets* coupling = nullptr);
   // Solves for the right-hand side [a; b] (size n + m); the result has the same layout.
   Eigen::VectorXd solve(const Eigen::VectorXd& rhs) const;
   // Times the pattern had to be analysed (1 while the constraint set stays the same).
@@ -41,7 +42,7 @@ class KktSolver {
 
  private:
   bool factorize_sparse(const Triplets& triplets, int size);
-  bool factorize_split(const Eigen::VectorXd& w, const Triplets& jacobian, int m);
+  bool factorize_split(const Eigen::VectorXd& w, const Triplets& jacobian, int m, const Triplets* coupling);
 
   Eigen::SparseMatrix<double> matrix_;
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;

@@ -10,10 +10,13 @@
 
 namespace periflex {
 
+// Where the recording's time went. Drawing and encoding run in threads of their own, at the
+// same time, so the two may add up to more than the run's wall time.
 struct FrameStats {
   long frames = 0;
-  double render_seconds = 0.0;  // drawing and read-back, in the recorder's thread
-  double encode_seconds = 0.0;  // PNG / ffmpeg, in the recorder's thread
+  double render_seconds = 0.0;  // drawing and read-back, in the draw thread
+  double encode_seconds = 0.0;  // PNG encoding and writing plus feeding ffmpeg, in the encoder threads
+  double submit_seconds = 0.0;  // what the solver's thread spent handing snapshots over
   std::string where;            // frames directory / movie / screenshot written
 };
 
@@ -21,14 +24,16 @@ class FrameSink {
  public:
   virtual ~FrameSink() = default;
   // Hands a snapshot over as the next movie / sequence frame, or as the single screenshot;
-  // returns once it is copied (the drawing happens in another thread).
+  // returns once it is copied (the drawing and encoding happen in other threads). Throws
+  // std::runtime_error when an earlier frame failed.
   virtual void submit(const Snapshot& snapshot, bool screenshot = false) = 0;
   // Waits for every frame to be written. Throws std::runtime_error on failure.
   virtual FrameStats finish() = 0;
 };
 
 // Checks what can be checked before simulating (ffmpeg present, output writable, sizes valid);
-// throws InputError. Then creates the sink.
+// throws InputError. Then creates the sink: multisampling as options.samples says, or when that is
+// 0 as default_samples() of the geometry's particle count.
 std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std::string& out_dir,
                                            std::shared_ptr<const SceneGeometry> geometry);
 

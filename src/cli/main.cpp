@@ -40,6 +40,9 @@ void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default end time / 100)")
       ->check(CLI::PositiveNumber);
   command->add_option("--size", o.size_text, "Frame size as WxH (default 1280x720)")->type_name("WxH");
+  command->add_option("--samples", o.samples,
+                      "Multisamples per pixel, 1 = off (default: 4, or off for 100k particles and more)")
+      ->check(CLI::Range(1, 16));
   command->add_option("--frames", o.frames_dir, "Directory for the PNG frames");
   command->add_option("--movie", o.movie_path, "MP4 movie written through ffmpeg");
   command->add_option("--fps", o.fps, "Playback frame rate of the movie")->check(CLI::Range(1.0, 240.0));

@@ -24,6 +24,7 @@ struct RunOptions {
   double frame_every = 0.0;             // simulated seconds between frames; 0: end_time / 100
   std::string size_text;                // "WxH"; empty: 1280x720
   int width = 1280, height = 720;       // parsed from size_text by run_command
+  int samples = 0;                      // multisamples per pixel; 0: 4, or 1 from 100k particles on
   std::string frames_dir;               // PNG sequence; default <out>/frames when rendering
   std::string movie_path;               // MP4 through ffmpeg
   bool movie_in_out_dir = false;        // movie.mp4 in the output directory (default recording)

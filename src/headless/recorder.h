@@ -1,0 +1,73 @@
+// Off-screen recording: snapshots in, a numbered PNG sequence and/or an MP4 movie out, plus
+// single screenshots.
+//
+//   submit() --[snapshot slots]--> draw thread --[frame slots]--> file thread:  PNG sequence, screenshots
+//   (copies)                       EGL context:                \-> movie thread: raw RGBA to ffmpeg
+//                                  camera, draw, read back
+//
+// Every stage has a thread of its own, so the caller (the solver) pays for copying a snapshot only,
+// and the next frame is drawn while the previous one is encoded. The slots are few and reused, so
+// memory stays bounded: when a later stage falls behind, the earlier one waits for a free slot,
+// and in the end so does submit(). Frames keep their submission order and numbers.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "render/renderer.h"
+#include "solve/snapshot.h"
+
+namespace periflex {
+
+struct RecorderOptions {
+  int width = 1280, height = 720;  // frame size in pixels
+  int samples = 1;                 // multisamples per pixel (1: off); render/view.h default_samples()
+                                   // is the usual choice; clamped to what the GL driver offers
+  std::string frames_dir;          // PNG sequence DIR/frame_000000.png, ... when not empty
+  std::string movie_path;          // H.264 MP4 through ffmpeg when not empty
+  double fps = 30.0;               // the movie's playback rate
+  std::string screenshot_path;     // where a frame submitted as a screenshot goes
+  RenderSettings settings;         // field, colour map, what is shown
+  std::string resource_root;       // shaders and colour maps; empty: find_resource_root()
+  std::string ffmpeg;              // ffmpeg executable; empty: the one on PATH
+};
+
+// Where the time went. Each stage runs in its own thread, so the busy times overlap and may add
+// up to more than the wall time.
+struct RecorderStats {
+  long frames = 0;                 // sequence frames written (screenshots not counted)
+  long screenshots = 0;
+  int samples = 1;                 // multisamples actually used
+  double draw_seconds = 0.0;       // draw thread: camera, drawing and read-back
+  double png_seconds = 0.0;        // file thread: PNG encoding and writing
+  double movie_seconds = 0.0;      // movie thread: handing frames to ffmpeg, which includes waiting
+                                   // while ffmpeg encodes, and its closing
+  double submit_seconds = 0.0;     // in submit(): copying snapshots and waiting for a free slot
+  double wall_seconds = 0.0;       // from construction to the end of finish()
+};
+
+class Recorder {
+ public:
+  // Starts the threads: the EGL context, the frames folder and ffmpeg are set up before this
+  // returns, so set-up failures are thrown here (std::runtime_error; periflex::InputError when
+  // ffmpeg is missing).
+  explicit Recorder(RecorderOptions options);
+  // Finishes the frames still queued; errors are swallowed (call finish() to see them).
+  ~Recorder();
+  Recorder(const Recorder&) = delete;
+  Recorder& operator=(const Recorder&) = delete;
+
+  // Copies the snapshot as the next sequence frame, or as the screenshot (which needs
+  // RecorderOptions::screenshot_path), and returns; waits while every snapshot slot is taken.
+  // Rethrows the first error of any recording thread. Call from one thread at a time.
+  void submit(const Snapshot& snapshot, bool screenshot = false);
+  // Waits until every submitted frame is written and the movie is closed, stops the threads and
+  // returns the statistics; rethrows the first error of any recording thread. Call once.
+  RecorderStats finish();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace periflex

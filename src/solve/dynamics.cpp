@@ -156,6 +156,7 @@ void Dynamics::analyse(double t) {
                                   "it mass and inertia or constrain it further");
     }
   }
+  inverse_mass_ = model_.mass.unaryExpr([](double m) { return m > 0.0 ? 1.0 / m : 0.0; });
   weight_ = Eigen::VectorXd::Zero(n);
   for (int k = 0; k < nc; ++k) weight_[constrained_[k]] = weight_c_[k];
 
@@ -348,9 +349,10 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
   }
   force_seconds_ += since(start);
 
-  // unconstrained coordinates: qdd = g / m; imposed ones: f''
+  // unconstrained coordinates: qdd = g / m (over every coordinate with mass, one vectorised pass;
+  // the others are overwritten below); imposed ones: f''
   qdd.resize(n);
-  for (int c : free_) qdd[c] = g_[c] / model_.mass[c];
+  qdd = g_.cwiseProduct(inverse_mass_);
   for (const auto& p : model_.prescribed) qdd[p.coordinate] = p.displacement.d2(t);
 
   // constrained coordinates: the augmented system, eliminated attachments condensed

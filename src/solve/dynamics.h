@@ -112,6 +112,7 @@ class Dynamics final : public OdeSystem {
   std::vector<char> active_is_driver_;  // per active row
   Eigen::VectorXd mass_c_, weight_c_;  // masses and projection weights of the constrained coordinates
   Eigen::VectorXd weight_;             // projection weights by global coordinate
+  Eigen::VectorXd inverse_mass_;       // 1 / m by global coordinate (0 where m = 0)
 
   // the reduced system: what stays in the matrix once the eliminated joints are condensed
   CondensedAttachments condensed_;

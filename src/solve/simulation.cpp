@@ -48,6 +48,7 @@ struct Simulation::Impl {
   LiveSettings live;
 
   OdeState state;
+  OdeState saved;                  // the state before the step in progress (kept allocated)
   double time = 0.0;
   long steps = 0;
   bool initialized = false;
@@ -208,7 +209,9 @@ void Simulation::Impl::initialize() {
 
 void Simulation::Impl::advance(double h) {
   // keep the last good state: nothing non-finite leaves the solver
-  const OdeState saved = state;
+  saved.q = state.q;  // copies into the kept buffers: no allocation per step
+  saved.qd = state.qd;
+  saved.work = state.work;
   const double saved_time = time;
   const auto start = Clock::now();
   const double forces0 = dynamics->force_seconds(), constraints0 = dynamics->constraint_seconds();
@@ -253,7 +256,9 @@ void Simulation::Impl::advance(double h) {
     NumericalDiagnostic d = error.diagnostic();
     if (d.step < 0) d.step = steps + 1;
     if (d.time == 0.0) d.time = time;
-    state = saved;
+    state.q = saved.q;
+    state.qd = saved.qd;
+    state.work = saved.work;
     time = saved_time;
     integrator->reset();
     // a mechanism that locks shows a (nearly) singular Jacobian at the last good state

@@ -53,6 +53,20 @@ TEST(Recording, ScreenshotAtATimeShowsTheSceneNotABlankPicture) {
   EXPECT_GT(colours.size(), 8u);
 }
 
+TEST(Recording, SamplesOptionAcceptsOneToSixteen) {
+  const auto out = fresh_directory("samples");
+  for (const char* bad : {"0", "17", "many"}) {
+    const auto r = run_periflex("run " + scene("pendulum.toml") + " --until 0.1 --render --samples " + bad +
+                                " --quiet --out " + out.string());
+    EXPECT_EQ(r.exit_code, 2) << "--samples " << bad << ": " << r.output;
+  }
+  const auto r = run_periflex("run " + scene("pendulum.toml") + " --until 0.1 --render --frame-every 0.05 --samples 1" +
+                              " --size 96x64 --frames " + (out / "frames").string() + " --quiet --out " + out.string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(fs::exists(out / "frames" / "frame_000002.png"));
+  EXPECT_FALSE(fs::exists(out / "frames" / "frame_000003.png"));
+}
+
 TEST(Recording, MovieWithoutFfmpegIsRefusedBeforeSimulating) {
   const auto out = fresh_directory("no_ffmpeg");
   // a PATH that holds no ffmpeg

@@ -48,6 +48,7 @@ struct PdBody::Impl {
   BondStore bonds;
   std::vector<uint8_t> no_fail;          // 1: bonds at this particle never break
   std::vector<double> initial_weight;    // sum of partial-volume factors of the initial bonds
+  std::vector<double> class_weight;      // partial-volume factor per bond length class
   double dx = 0.0, delta = 0.0, c = 0.0, s0 = 0.0;
   bool fracture = false;
   double bond_damping = 0.0, global_damping = 0.0;
@@ -86,9 +87,6 @@ struct PdBody::Impl {
     b = std::abs(b);
     return a < table_size && b < table_size ? beta_table[a * table_size + b] : 0.0;
   }
-  double bond_volume_fraction(int i, int32_t j) const {
-    return volume_fraction(grid.ix[j] - grid.ix[i], grid.iy[j] - grid.iy[i]);
-  }
 
   // Bonds to every neighbour with a positive weight that no notch cuts. k0 receives each bond's
   // stiffness before the surface correction, nx2 the squared x-component of its unit vector.
@@ -124,6 +122,9 @@ struct PdBody::Impl {
         k0.push_back(c * w * beta * v * v);
         nx2.push_back(double(di) * di / r2);
         initial_weight[i] += beta;
+        // the factor depends on the offset's length only, so one entry per length class
+        if (class_weight.size() <= static_cast<size_t>(r2)) class_weight.resize(static_cast<size_t>(r2) + 1, 0.0);
+        class_weight[static_cast<size_t>(r2)] = beta;
       }
       bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
     }
@@ -453,10 +454,12 @@ void PdBody::damage(std::vector<float>& out) const {
   const BondStore& b = m.bonds;
   out.resize(m.n());
   // 1 - intact weight / initial weight, the weight of a bond being its partial-volume factor
-  for (int i = 0; i < m.n(); ++i) {
+  const int n = m.n();
+  const double* weight = m.class_weight.data();
+#pragma omp parallel for schedule(static) if (n >= 4096)
+  for (int i = 0; i < n; ++i) {
     double intact = 0.0;
-    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k)
-      if (!b.broken[k]) intact += m.bond_volume_fraction(i, b.neighbor[k]);
+    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += b.broken[k] ? 0.0 : weight[b.length_class[k]];
     const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
     out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
   }

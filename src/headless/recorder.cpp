@@ -64,9 +64,8 @@ struct Recorder::Impl {
   bool finished = false;
   std::exception_ptr error;   // the first failure of any thread
 
-  // Written by one thread each, read after they are joined.
-  RecorderStats stats;
-  double draw_seconds = 0.0, png_seconds = 0.0, movie_seconds = 0.0;
+  // Written by one thread each (submit_seconds by the caller's), read after they are joined.
+  double draw_seconds = 0.0, png_seconds = 0.0, movie_seconds = 0.0, submit_seconds = 0.0;
   long sequence_frames = 0, screenshots = 0;
   int samples_used = 1;
 
@@ -287,7 +286,7 @@ void Recorder::submit(const Snapshot& snapshot, bool screenshot) {
     m.jobs_to_draw.push_back(j);
     m.changed.notify_all();
   }
-  m.stats.submit_seconds += seconds_between(start, Clock::now());
+  m.submit_seconds += seconds_between(start, Clock::now());
 }
 
 RecorderStats Recorder::finish() {
@@ -298,13 +297,14 @@ RecorderStats Recorder::finish() {
   // after a failure elsewhere the movie is still open: end ffmpeg now, not at destruction
   m.movie.reset();
   if (m.error) std::rethrow_exception(m.error);
-  RecorderStats stats = m.stats;
+  RecorderStats stats;
   stats.frames = m.sequence_frames;
   stats.screenshots = m.screenshots;
   stats.samples = m.samples_used;
   stats.draw_seconds = m.draw_seconds;
   stats.png_seconds = m.png_seconds;
   stats.movie_seconds = m.movie_seconds;
+  stats.submit_seconds = m.submit_seconds;
   stats.wall_seconds = seconds_between(m.start, Clock::now());
   return stats;
 }

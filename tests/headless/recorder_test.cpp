@@ -93,6 +93,11 @@ TEST(Recorder, FramesAreNumberedWithoutGapsInSubmissionOrder) {
   const RecorderStats stats = recorder.finish();
   EXPECT_EQ(stats.frames, kFrames);
   EXPECT_EQ(stats.screenshots, 0);
+  // each thread accounts for its own work, and there was no movie
+  EXPECT_GT(stats.draw_seconds, 0.0);
+  EXPECT_GT(stats.png_seconds, 0.0);
+  EXPECT_EQ(stats.movie_seconds, 0.0);
+  EXPECT_GT(stats.wall_seconds, 0.0);
 
   // exactly the numbered files, nothing left under a temporary name
   long files = 0;

@@ -7,6 +7,9 @@ Run once; the PNGs are committed. Uses only the Python standard library.
            (A. Mikhailov, "Turbo, an improved rainbow colormap", Google AI blog, 2019).
   viridis  matplotlib's viridis, the degree-6 polynomial fit by M. Zucker (max error ~1/255).
   grey     a linear ramp from 0.2 to 1.0, so undamaged particles stay visible on a dark background.
+  ember    the default: steel grey for intact material (visible on the dark background, calm),
+           then pale yellow, amber, orange and deep red as the value grows, so the first broken
+           bonds already stand out and a crack reads at a glance. Piecewise linear in RGB.
 """
 import os
 import struct
@@ -40,6 +43,21 @@ def viridis(x):
     return tuple(clamp01(sum(c[i][ch] * x ** i for i in range(7))) for ch in range(3))
 
 
+EMBER_STOPS = ((0.00, (0.47, 0.53, 0.62)),
+               (0.08, (0.78, 0.78, 0.55)),
+               (0.30, (1.00, 0.80, 0.20)),
+               (0.60, (0.96, 0.45, 0.10)),
+               (1.00, (0.72, 0.06, 0.10)))
+
+
+def ember(x):
+    for (x0, c0), (x1, c1) in zip(EMBER_STOPS, EMBER_STOPS[1:]):
+        if x <= x1:
+            t = (x - x0) / (x1 - x0)
+            return tuple(a + t * (b - a) for a, b in zip(c0, c1))
+    return EMBER_STOPS[-1][1]
+
+
 def grey(x):
     v = 0.2 + 0.8 * x
     return (v, v, v)
@@ -60,7 +78,7 @@ def main():
     root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
     out_dir = os.path.join(root, "assets", "colormaps")
     os.makedirs(out_dir, exist_ok=True)
-    for name, fn in (("turbo", turbo), ("viridis", viridis), ("grey", grey)):
+    for name, fn in (("turbo", turbo), ("viridis", viridis), ("grey", grey), ("ember", ember)):
         row = []
         for i in range(N):
             row.extend(int(round(255.0 * ch)) for ch in fn(i / (N - 1)))

@@ -90,7 +90,7 @@ struct Renderer::Impl {
   std::vector<float> instances, attached;
   SolidMesh mesh;
   float range_min = 0.0f, range_max = 1.0f;
-  std::string last_colormap = "turbo";
+  std::string last_colormap = "ember";
 
   // trails: one polyline per rigid body centre and per probe
   const SceneGeometry* trail_geometry = nullptr;

@@ -30,7 +30,7 @@ struct RenderSettings {
   ColorField field = ColorField::kDamage;
   bool auto_range = true;          // range from the data each frame
   float range_min = 0.0f, range_max = 1.0f;
-  std::string colormap = "turbo";  // a PNG in assets/colormaps/
+  std::string colormap = "ember";  // a PNG in assets/colormaps/
   bool show_bodies = true;
   bool show_markers = true;
   bool show_springs = true;

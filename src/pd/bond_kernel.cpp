@@ -28,21 +28,23 @@ constexpr double kRowMaxSlack = 1e-12;
 // Below this many particles a loop runs on one thread: fork and join would cost more than the work.
 constexpr int kParallelMin = 4096;
 
-// Calls fn(begin, end) over [0, n) split into one contiguous block per thread (the same
-// blocks a static schedule would give), or once when n is small.
+// Rows per chunk of a parallel loop: large enough that scheduling costs nothing next to the
+// work, small enough (25 chunks at 100k particles) that a thread slowed by another process on
+// its core hands its share to the other.
+constexpr int kChunkRows = 4096;
+
+// Calls fn(begin, end) over [0, n) in chunks of kChunkRows handed to the threads as they
+// become free, or once when n is small. Every row is computed the same way whichever thread
+// takes it, so results do not depend on the thread count or the schedule.
 template <typename Fn>
 void for_blocks(int n, Fn&& fn) {
   if (n < kParallelMin) {
     fn(0, n);
     return;
   }
-#pragma omp parallel
-  {
-    const int threads = omp_get_num_threads(), id = omp_get_thread_num();
-    const int begin = static_cast<int>(static_cast<long>(n) * id / threads);
-    const int end = static_cast<int>(static_cast<long>(n) * (id + 1) / threads);
-    fn(begin, end);
-  }
+  const int chunks = (n + kChunkRows - 1) / kChunkRows;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int c = 0; c < chunks; ++c) fn(c * kChunkRows, std::min(n, (c + 1) * kChunkRows));
 }
 
 // What the row loops read, as plain pointers.

@@ -52,7 +52,7 @@ struct ModelFactory {
 // The factory the program uses: scene/scene_loader.h and solve/simulation.h. The simulation
 // thread's parallel force loops use one core fewer than the machine has (at least one), so
 // drawing keeps a core: with every core busy stepping, the solver's threads and the render
-// thread take turns and both slow down many times.
+// thread take turns and both slow down many times. A set OMP_NUM_THREADS is followed instead.
 ModelFactory simulation_model_factory();
 
 // A copy of the worker's state for the panels, refreshed whenever a snapshot is published.

@@ -2,6 +2,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <memory>
 
 #include "app/sim_worker.h"
@@ -38,8 +39,14 @@ ModelFactory simulation_model_factory() {
   f.build = [](const SceneDef& scene) -> std::unique_ptr<SteppedModel> {
     return std::make_unique<SimulationModel>(scene);
   };
-  // parallel regions started by the simulation thread leave one core to drawing
-  f.started = [] { omp_set_num_threads(std::max(1, omp_get_num_procs() - 1)); };
+  // parallel regions started by the simulation thread leave one core to drawing, unless
+  // OMP_NUM_THREADS says otherwise (the ThreadSanitizer run keeps OpenMP to one thread: GCC's
+  // libgomp is not instrumented, so TSan cannot see its barriers)
+  f.started = [] {
+    const char* chosen = std::getenv("OMP_NUM_THREADS");
+    if (chosen && *chosen) return;
+    omp_set_num_threads(std::max(1, omp_get_num_procs() - 1));
+  };
   return f;
 }
 

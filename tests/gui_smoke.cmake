@@ -1,7 +1,8 @@
 # GUI smoke tests: the visualiser under a virtual X server (Xvfb) draws every shipped scene for a
 # few frames and writes a screenshot; a small checker then verifies the picture is not blank and,
 # for the notched plate, that the crack is drawn above the notch. One scripted run drives the
-# controls (pause, step, a live setting, resume, a colour map) and checks they took effect.
+# controls (pause, step, a live setting, resume, a colour map) and checks they took effect;
+# another records frames from the window and checks they carry the overlay.
 # Label: gui (ctest -L gui). Needs xvfb-run; skipped when it or the visualiser is missing.
 find_program(PERIFLEX_XVFB_RUN xvfb-run)
 if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
@@ -66,15 +67,29 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
     set_tests_properties(gui_smoke_script PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb)
 
     # recording from the window: a PNG every 10 ms of simulated time for 50 ms; the fourth frame
-    # must be a real picture (the folder is emptied first, so old frames cannot pass)
-    add_test(NAME gui_smoke_record_clean COMMAND ${CMAKE_COMMAND} -E rm -rf "${gui_out}/record")
+    # must be a real picture carrying the overlay a screenshot has (scene name and time, colour
+    # legend); the folders are emptied first, so old frames cannot pass
+    add_test(NAME gui_smoke_record_clean
+             COMMAND ${CMAKE_COMMAND} -E rm -rf "${gui_out}/record" "${gui_out}/record_plain")
     set_tests_properties(gui_smoke_record_clean PROPERTIES LABELS gui FIXTURES_SETUP gui_record_clean)
     add_test(NAME gui_smoke_record
              COMMAND ${gui_xvfb} ${gui_program} "${flexible}" --frames 6
                      --script "speed max@0; record ${gui_out}/record 0.01@1; wait 0.05@2; stop_record@3")
     set_tests_properties(gui_smoke_record PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb
                          FIXTURES_REQUIRED gui_record_clean FIXTURES_SETUP gui_record)
-    add_test(NAME gui_smoke_record_picture COMMAND gui_png_check "${gui_out}/record/frame_000003.png")
+    add_test(NAME gui_smoke_record_picture
+             COMMAND gui_png_check "${gui_out}/record/frame_000003.png" --overlay)
     set_tests_properties(gui_smoke_record_picture PROPERTIES LABELS gui FIXTURES_REQUIRED gui_record)
+
+    # the same recording with the overlay turned off must fail the overlay check (so it can fail)
+    set(record_plain "show overlay off@0; speed max@0; record ${gui_out}/record_plain 0.01@1; wait 0.05@2")
+    add_test(NAME gui_smoke_record_plain
+             COMMAND ${gui_xvfb} ${gui_program} "${flexible}" --frames 6 --script "${record_plain}; stop_record@3")
+    set_tests_properties(gui_smoke_record_plain PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb
+                         FIXTURES_REQUIRED gui_record_clean FIXTURES_SETUP gui_record_plain)
+    add_test(NAME gui_smoke_record_plain_picture
+             COMMAND gui_png_check "${gui_out}/record_plain/frame_000003.png" --no-overlay)
+    set_tests_properties(gui_smoke_record_plain_picture PROPERTIES LABELS gui
+                         FIXTURES_REQUIRED gui_record_plain)
   endif()
 endif()

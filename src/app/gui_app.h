@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/event_log.h"
+#include "app/frame_overlay.h"
 #include "app/gui.h"
 #include "app/gui_script.h"
 #include "app/plot_history.h"
@@ -115,6 +116,7 @@ class GuiApp {
   double record_interval_ = 0.0;
   float record_fps_ = 30.0f;
   std::unique_ptr<FrameWriter> writer_;
+  std::unique_ptr<FrameOverlay> record_overlay_;   // recorded frames carry the window's overlay
   unsigned fbo_ = 0, color_rbo_ = 0;
   int record_width_ = 0, record_height_ = 0;
   std::string record_message_;

@@ -1,5 +1,6 @@
 // Recording from the window: the simulation thread publishes snapshots at a fixed simulated-time
-// interval; the main thread draws each into an off-screen framebuffer of the window's size and
+// interval; the main thread draws each, with the overlay a screenshot shows (scene name, time,
+// colour legend) but without the panels, into an off-screen framebuffer of the window's size and
 // hands the pixels to a frame writer (PNG sequence or MP4 through ffmpeg).
 #include <algorithm>
 #include <exception>
@@ -51,6 +52,16 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
     return;
   }
 
+  // the overlay's own ImGui context: the window's holds the panels
+  try {
+    record_overlay_ = std::make_unique<FrameOverlay>();
+  } catch (const std::exception& e) {
+    record_message_ = e.what();
+    log_.add("recording could not start: " + record_message_);
+    writer_.reset();
+    return;
+  }
+
   // the off-screen target the recorded frames are drawn into
   glGenFramebuffers(1, &fbo_);
   glGenRenderbuffers(1, &color_rbo_);
@@ -64,6 +75,10 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
     record_message_ = "the off-screen framebuffer for recording is incomplete";
     log_.add("recording could not start: " + record_message_);
     writer_.reset();
+    record_overlay_.reset();
+    glDeleteFramebuffers(1, &fbo_);
+    glDeleteRenderbuffers(1, &color_rbo_);
+    fbo_ = color_rbo_ = 0;
     return;
   }
   record_message_ = "recording to " + path;
@@ -73,12 +88,15 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
 }
 
 void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
-  // draw off-screen, read back (rows bottom-up in GL), hand to the writer
+  // draw off-screen with the overlay, read back (rows bottom-up in GL), hand to the writer
   // the movie has no panels: centre what the window shows beside them
   Camera camera = camera_;
   camera.center.x() += 0.5 * kPanelWidth * camera.view_height / std::max(1, record_height_);
   glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
   renderer_->draw(frame, camera, render_, record_width_, record_height_);
+  if (render_.show_overlay && frame.geometry) {
+    record_overlay_->draw(*renderer_, frame, render_, record_width_, record_height_);
+  }
   RgbaImage image;
   image.resize(record_width_, record_height_);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -123,6 +141,7 @@ void GuiApp::stop_recording() {
     record_message_ = std::string("recording ended with an error: ") + e.what();
   }
   log_.add(record_message_);
+  record_overlay_.reset();
   glDeleteFramebuffers(1, &fbo_);
   glDeleteRenderbuffers(1, &color_rbo_);
   fbo_ = color_rbo_ = 0;

@@ -6,9 +6,16 @@
 //                                            the scene's first notch (the crack has grown)
 //   gui_png_check IMAGE --no-crack SCENE     the opposite, for a picture taken before the crack
 //                                            grows (proves the crack check can fail)
+//   gui_png_check IMAGE --overlay            also: the overlay is drawn at the picture's left
+//                                            edge (scene name and time box at the top, colour
+//                                            legend at the bottom), as on screenshots and
+//                                            recorded frames of a scene with particles
+//   gui_png_check IMAGE --no-overlay         the opposite, for a picture drawn without it
+//                                            (proves the overlay check can fail)
 //
 // The notch is found where the GUI draws it: the scene is built, its first snapshot framed with
 // the GUI's own fit_camera_beside_panels for the image's size. Exit code 0 pass, 1 fail, 2 usage.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -42,9 +49,18 @@ constexpr double kColourMatch = 30.0;
 constexpr double kDamagedFrom = 0.4;
 // Pixels needed to call a region damaged: a few broken-off particle discs.
 constexpr long kMinDamagedPixels = 20;
+// The overlay as Renderer::draw_overlay lays it out from the top-left corner: a shaded box from
+// (6, 6) holding the scene name and the time in near-white text (a line of the default 13 px
+// font each), and at the bottom left a colour bar from x = 12, its lower edge 29 px above the
+// bottom. Text needs this many near-white pixels in the box, the bar this many distinct colours.
+constexpr int kBoxLeft = 6, kBoxTop = 6, kBoxRight = 200, kBoxBottom = 40;
+constexpr long kMinTextPixels = 40;
+constexpr int kBarLeft = 16, kBarRight = 200, kBarFromBottom = 35;
+constexpr size_t kMinBarColours = 16;
 
 int usage() {
-  std::fprintf(stderr, "usage: gui_png_check IMAGE [--crack SCENE | --no-crack SCENE]\n");
+  std::fprintf(stderr,
+               "usage: gui_png_check IMAGE [--crack SCENE | --no-crack SCENE | --overlay | --no-overlay]\n");
   return 2;
 }
 
@@ -127,17 +143,64 @@ long damaged_pixels_above_notch(const RgbaImage& image, const std::string& scene
   return static_cast<long>(damaged.size());
 }
 
+// Whether the overlay's two parts are in the picture: near-white text in the name and time box,
+// and a row of the colour legend with many colours (the scene itself, framed beside them, is
+// background there).
+struct OverlaySeen {
+  long text_pixels = 0;
+  size_t bar_colours = 0;
+  bool box() const { return text_pixels >= kMinTextPixels; }
+  bool legend() const { return bar_colours >= kMinBarColours; }
+};
+
+OverlaySeen find_overlay(const RgbaImage& image) {
+  OverlaySeen seen;
+  for (int y = kBoxTop; y < std::min(kBoxBottom, image.height); ++y) {
+    for (int x = kBoxLeft; x < std::min(kBoxRight, image.width); ++x) {
+      const uint8_t* p = image.at(x, y);
+      if (p[0] >= 200 && p[1] >= 200 && p[2] >= 200) ++seen.text_pixels;
+    }
+  }
+  std::set<uint32_t> colours;
+  const int y = image.height - kBarFromBottom;
+  for (int x = kBarLeft; y >= 0 && x < std::min(kBarRight, image.width); ++x) {
+    const uint8_t* p = image.at(x, y);
+    colours.insert(uint32_t(p[0]) << 16 | uint32_t(p[1]) << 8 | p[2]);
+  }
+  seen.bar_colours = colours.size();
+  return seen;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc != 2 && argc != 4) return usage();
-  const std::string mode = argc == 4 ? argv[2] : "";
-  if (argc == 4 && mode != "--crack" && mode != "--no-crack") return usage();
+  if (argc < 2 || argc > 4) return usage();
+  const std::string mode = argc >= 3 ? argv[2] : "";
+  const bool scene_mode = mode == "--crack" || mode == "--no-crack";
+  const bool overlay_mode = mode == "--overlay" || mode == "--no-overlay";
+  if (argc == 4 && !scene_mode) return usage();
+  if (argc == 3 && !overlay_mode) return usage();
   try {
     const RgbaImage image = read_png(argv[1]);
     std::printf("%s: %d x %d\n", argv[1], image.width, image.height);
     bool ok = check_not_blank(image);
-    if (!mode.empty()) {
+    if (overlay_mode) {
+      const OverlaySeen seen = find_overlay(image);
+      std::printf("overlay: %ld text pixels in the name and time box, %zu colours along the legend\n",
+                  seen.text_pixels, seen.bar_colours);
+      if (mode == "--overlay" && !(seen.box() && seen.legend())) {
+        const char* missing = !seen.box() && !seen.legend() ? "the name and time box and the colour legend"
+                              : !seen.box()                  ? "the name and time box"
+                                                             : "the colour legend";
+        std::printf("FAIL: the overlay is missing (%s not found)\n", missing);
+        ok = false;
+      }
+      if (mode == "--no-overlay" && (seen.box() || seen.legend())) {
+        std::printf("FAIL: overlay-like pixels in a picture drawn without the overlay\n");
+        ok = false;
+      }
+    }
+    if (scene_mode) {
       const long damaged = damaged_pixels_above_notch(image, argv[3]);
       std::printf("%ld damage-coloured pixels in the ligament above the notch\n", damaged);
       if (mode == "--crack" && damaged < kMinDamagedPixels) {

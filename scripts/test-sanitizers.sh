@@ -2,8 +2,10 @@
 # The sanitizer configurations CI runs after the main suite:
 #   AddressSanitizer + UBSan over the solver, peridynamics, the scene parser (malformed scenes)
 #   and the command line;
-#   ThreadSanitizer over the threaded parts of the visualiser (snapshot exchange, command queue,
-#   simulation thread).
+#   ThreadSanitizer over the threaded parts of the visualiser: the unit tests (snapshot exchange,
+#   command queue, simulation thread) and the GUI smoke tests, scripted runs of the program under
+#   Xvfb that drive the simulation thread while the window draws (tests/gui_smoke.cmake, label
+#   gui; the first report fails the test).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -14,7 +16,10 @@ cmake --build --preset asan -j"$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --preset asan -j"$jobs" -L '^(core|scene|mbs|pd|solve|cli|output)$' --timeout 900
 
+# one build for both: the program (with the GUI) and the unit tests, nothing else
 cmake --preset tsan >/dev/null
-cmake --build --preset tsan -j"$jobs" --target test_app
+tsan_targets=(test_app periflex)
+if command -v xvfb-run >/dev/null; then tsan_targets+=(gui_png_check); fi
+cmake --build --preset tsan -j"$jobs" --target "${tsan_targets[@]}"
 TSAN_OPTIONS="suppressions=$PWD/scripts/tsan.supp second_deadlock_stack=1" \
-  ctest --preset tsan -j"$jobs" -L '^app$' --timeout 900
+  ctest --preset tsan -j"$jobs" -L '^(app|gui)$' --timeout 900

@@ -3,6 +3,8 @@
 # for the notched plate, that the crack is drawn above the notch. One scripted run drives the
 # controls (pause, step, a live setting, resume, a colour map) and checks they took effect;
 # another records frames from the window and checks they carry the overlay.
+# In a ThreadSanitizer build (PERIFLEX_SANITIZE=thread) a smaller set runs instead: scripted runs
+# that drive the simulation thread and the render thread hard, failing on any TSan report.
 # Label: gui (ctest -L gui). Needs xvfb-run; skipped when it or the visualiser is missing.
 find_program(PERIFLEX_XVFB_RUN xvfb-run)
 if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
@@ -13,6 +15,65 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   file(MAKE_DIRECTORY "${gui_out}")
   set(gui_xvfb ${PERIFLEX_XVFB_RUN} -a -s "-screen 0 1280x800x24")
   set(gui_program $<TARGET_FILE:periflex> gui)
+  set(flexible "${PROJECT_SOURCE_DIR}/scenes/flexible_pendulum.toml")
+  set(rigid "${PROJECT_SOURCE_DIR}/scenes/slider_crank.toml")
+  set(notched "${PROJECT_SOURCE_DIR}/scenes/notched_plate.toml")
+endif()
+
+if(TARGET periflex_app AND PERIFLEX_XVFB_RUN AND PERIFLEX_SANITIZE STREQUAL "thread")
+  # Under ThreadSanitizer: the first report ends the program with exit code 66 (and the output
+  # check catches one in any case). Suppressions cover only uninstrumented third-party code (Mesa,
+  # see scripts/tsan.supp). OpenMP stays at one thread: GCC's libgomp is not instrumented, so
+  # TSan cannot see its barriers and would report every parallel loop of the solver.
+  set(gui_tsan_env
+      "TSAN_OPTIONS=halt_on_error=1 second_deadlock_stack=1 suppressions=${PROJECT_SOURCE_DIR}/scripts/tsan.supp"
+      "OMP_NUM_THREADS=1")
+  # a scripted run of SCENE for FRAMES frames whose last one is NAME.png, then the picture check
+  function(gui_tsan_test name scene frames script)
+    add_test(NAME ${name} COMMAND ${gui_xvfb} ${gui_program} "${scene}" --frames ${frames}
+                                  --screenshot "${gui_out}/${name}.png" --script "${script}")
+    set_tests_properties(${name} PROPERTIES LABELS gui TIMEOUT 300 RESOURCE_LOCK xvfb
+                         ENVIRONMENT "${gui_tsan_env}" FAIL_REGULAR_EXPRESSION "ThreadSanitizer"
+                         FIXTURES_SETUP ${name})
+    add_test(NAME ${name}_picture COMMAND gui_png_check "${gui_out}/${name}.png")
+    set_tests_properties(${name}_picture PROPERTIES LABELS gui FIXTURES_REQUIRED ${name})
+  endfunction()
+
+  # particles: every control while the simulation thread steps (pause, single steps, live bond
+  # damping and correction, resume, changes while running), recording from the window, the mouse
+  # spring, reset, then a switch to a rigid scene that keeps running
+  string(JOIN "; " tsan_particles "pause@3" "expect paused@3" "step@4" "step 5@5" "expect paused@5"
+         "set bond_damping=0.1@6" "set correction=baumgarte@6" "expect bond_damping=0.1@6"
+         "expect correction=baumgarte@6" "resume@7" "expect running@7" "set global_damping=0.5@9"
+         "set correction=projection@10" "expect correction=projection@10" "expect running@10"
+         "record ${gui_out}/tsan_record 0.005@11" "grab 0.45 0@12" "drag 0.45 0.1@13" "release@15"
+         "wait 0.05@16" "stop_record@17" "reset@18" "run@18" "colormap viridis@19"
+         "scene pendulum.toml@20" "expect scene=pendulum@21" "run@21" "set correction=projection@22"
+         "expect running@23")
+  gui_tsan_test(gui_tsan_particles "${flexible}" 28 "${tsan_particles}")
+
+  # a large particle body stepping flat out (the snapshot's damage pass, big snapshots handed
+  # over while drawn): fracture off and on, single steps, damping, colour field and range
+  string(JOIN "; " tsan_plate "speed max@0" "run@0" "wait 1e-4@1" "set fracture=off@2"
+         "expect fracture=off@2" "pause@3" "step 2@4" "set fracture=on@5" "set global_damping=10@5"
+         "resume@6" "expect running@6" "field strain@7" "range auto@7" "wait 3e-4@8" "field damage@9"
+         "show bonds on@9")
+  gui_tsan_test(gui_tsan_plate "${notched}" 12 "${tsan_plate}")
+
+  # rigid bodies: live correction and time step, single steps, flat-out stepping, a movie through
+  # the ffmpeg pipe when ffmpeg is there (else a PNG sequence), following a body, reload
+  find_program(PERIFLEX_FFMPEG ffmpeg)
+  set(tsan_movie "${gui_out}/tsan_rigid")
+  if(PERIFLEX_FFMPEG)
+    set(tsan_movie "${gui_out}/tsan_rigid.mp4")
+  endif()
+  string(JOIN "; " tsan_rigid "set correction=projection@2" "expect correction=projection@2" "pause@4"
+         "expect paused@4" "step@5" "step 3@6" "set dt=5e-4@7" "set correction=baumgarte@7"
+         "expect dt=5e-4@7" "resume@8" "expect running@8" "set alpha=5@9" "speed max@10"
+         "record ${tsan_movie} 0.02@11" "wait 0.5@12" "stop_record@13" "follow crank@14" "reload@15"
+         "run@16" "expect running@16" "follow none@17")
+  gui_tsan_test(gui_tsan_rigid "${rigid}" 20 "${tsan_rigid}")
+elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
 
   # one picture per shipped scene, then the checker on it
   file(GLOB gui_scenes CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/scenes/*.toml")
@@ -30,7 +91,6 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   # the crack: run the notched plate to t = 0.8 ms, well after the crack starts (near 0.4 ms),
   # without the probe crosses and markers (yellow and orange, like the upper colour map) or the
   # overlay legend
-  set(notched "${PROJECT_SOURCE_DIR}/scenes/notched_plate.toml")
   set(gui_plain "show probes off@0; show markers off@0; show overlay off@0")
   if(EXISTS "${notched}")
     add_test(NAME gui_smoke_crack
@@ -55,7 +115,6 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
 
   # the controls: pause, step, change a live setting, resume, switch colour map (each checked),
   # then from the start pull the pendulum's free end up with the mouse spring and let go
-  set(flexible "${PROJECT_SOURCE_DIR}/scenes/flexible_pendulum.toml")
   string(JOIN "; " gui_controls "pause@5" "expect paused@5" "step@6" "set bond_damping=0.1@7"
          "expect bond_damping=0.1@7" "resume@8" "expect running@8" "colormap viridis@9"
          "expect colormap=viridis@9" "fit@10" "reset@10" "grab 0.45 0@11"

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 #include <vector>
 
 // On x86-64 with GCC or Clang the row loops also exist as AVX-512 code (eight bonds a vector)
@@ -51,14 +53,16 @@ void for_blocks(int n, Fn&& fn) {
 struct Rows {
   const int64_t* row;
   const int32_t* nbr;
-  const uint16_t* cls;   // length class of each bond
+  const int16_t* off;    // j - i of each bond, or null (see BondStore::neighbor_offset)
+  const uint8_t* cls;    // length class of each bond
   const double* l0;      // 1 / |xi| per length class
   int classes;           // entries of l0
   const float* k;        // stiffness, 0 once broken
 };
 
 Rows rows_of(const BondStore& b) {
-  return {b.row.data(), b.neighbor.data(), b.length_class.data(), b.inv_length_table.data(),
+  return {b.row.data(), b.neighbor.data(), b.neighbor_offset.empty() ? nullptr : b.neighbor_offset.data(),
+          b.length_class.data(), b.inv_length_table.data(),
           static_cast<int>(b.inv_length_table.size()), b.stiffness.data()};
 }
 
@@ -145,8 +149,9 @@ __attribute__((target("avx2"))) inline __m256d gather(const double* base, __m128
 
 // 1/|xi| of bonds b .. b+3 from the class table
 __attribute__((target("avx2"))) inline __m256d table_lengths(const Rows& r, int64_t b) {
-  const __m128i cls = _mm_cvtepu16_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(r.cls + b)));
-  return gather(r.l0, cls);
+  int32_t four;
+  std::memcpy(&four, r.cls + b, sizeof(four));
+  return gather(r.l0, _mm_cvtepu8_epi32(_mm_cvtsi32_si128(four)));
 }
 
 // sum of the four lanes, in a fixed order
@@ -287,17 +292,22 @@ struct Lanes {
   __m512d k;        // stiffness, 0 in masked lanes
 };
 
-// kSmallTable: the class table fits the two registers table_lo (classes 0-7) and table_hi (8-15)
-template <bool kSmallTable>
+// kSmallTable: the class table fits the two registers table_lo (classes 0-7) and table_hi (8-15).
+// kOffsets: neighbours read as 16-bit offsets j - i (r.off), half the bytes of the indices.
+template <bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 inline Lanes load_lanes(const Rows& r, int64_t b, int64_t last, int i, __m512d table_lo,
                                         __m512d table_hi) {
   Lanes l;
   const int64_t left = last - b;
   l.mask = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
-  const __m256i j = _mm256_mask_loadu_epi32(_mm256_set1_epi32(i), l.mask, r.nbr + b);
+  __m256i j;
+  if constexpr (kOffsets)
+    j = _mm256_add_epi32(_mm256_cvtepi16_epi32(_mm_maskz_loadu_epi16(l.mask, r.off + b)), _mm256_set1_epi32(i));
+  else
+    j = _mm256_mask_loadu_epi32(_mm256_set1_epi32(i), l.mask, r.nbr + b);
   l.twice_j = _mm256_slli_epi32(j, 1);
   // masked lanes read class 0, whose table entry is 0
-  const __m512i cls = _mm512_cvtepu16_epi64(_mm_maskz_loadu_epi16(l.mask, r.cls + b));
+  const __m512i cls = _mm512_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(l.mask), r.cls + b));
   if constexpr (kSmallTable)
     l.l0 = _mm512_permutex2var_pd(table_lo, cls, table_hi);
   else
@@ -320,7 +330,7 @@ PERIFLEX_AVX512 inline __m512d track_max(__m512d top, __m512d r2, __m512d inv_le
   return _mm512_mask_max_pd(top, _mm512_cmp_pd_mask(l.k, _mm512_setzero_pd(), _CMP_GT_OQ), top, s);
 }
 
-template <bool kTrack, bool kSmallTable>
+template <bool kTrack, bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 void elastic_rows_avx512(int begin, int end, const Rows& r, const double* __restrict pos,
                                          double* __restrict force, double* __restrict most) {
   const __m512d one = _mm512_set1_pd(1.0);
@@ -331,7 +341,7 @@ PERIFLEX_AVX512 void elastic_rows_avx512(int begin, int end, const Rows& r, cons
     __m512d ax = _mm512_setzero_pd(), ay = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     const int64_t last = r.row[i + 1];
     for (int64_t b = r.row[i]; b < last; b += 8) {
-      const Lanes l = load_lanes<kSmallTable>(r, b, last, i, table_lo, table_hi);
+      const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos, 8), xi);
       const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos + 1, 8), yi);
       // masked lanes hold the particle itself (r2 = 0): give them r2 = 1 so nothing is infinite
@@ -348,7 +358,7 @@ PERIFLEX_AVX512 void elastic_rows_avx512(int begin, int end, const Rows& r, cons
   }
 }
 
-template <bool kTrack, bool kSmallTable>
+template <bool kTrack, bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 void damped_rows_avx512(int begin, int end, const Rows& r, const double* __restrict pos,
                                         const double* __restrict vel, double eta_over_e, double* __restrict force,
                                         double* __restrict most) {
@@ -361,7 +371,7 @@ PERIFLEX_AVX512 void damped_rows_avx512(int begin, int end, const Rows& r, const
     __m512d ax = _mm512_setzero_pd(), ay = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     const int64_t last = r.row[i + 1];
     for (int64_t b = r.row[i]; b < last; b += 8) {
-      const Lanes l = load_lanes<kSmallTable>(r, b, last, i, table_lo, table_hi);
+      const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos, 8), xi);
       const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos + 1, 8), yi);
       const __m512d dvx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, vel, 8), vxi);
@@ -383,7 +393,7 @@ PERIFLEX_AVX512 void damped_rows_avx512(int begin, int end, const Rows& r, const
   }
 }
 
-template <bool kSmallTable>
+template <bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 void row_max_stretch_avx512(int begin, int end, const Rows& r, const double* __restrict pos,
                                             double* __restrict out) {
   const __m512d one = _mm512_set1_pd(1.0);
@@ -394,7 +404,7 @@ PERIFLEX_AVX512 void row_max_stretch_avx512(int begin, int end, const Rows& r, c
     __m512d top = _mm512_set1_pd(-1.0);
     const int64_t last = r.row[i + 1];
     for (int64_t b = r.row[i]; b < last; b += 8) {
-      const Lanes l = load_lanes<kSmallTable>(r, b, last, i, table_lo, table_hi);
+      const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos, 8), xi);
       const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos + 1, 8), yi);
       const __m512d r2 = _mm512_mask_blend_pd(l.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
@@ -425,6 +435,30 @@ Isa isa() {
 #endif
 }
 
+#ifdef PERIFLEX_HAVE_VECTOR_KERNELS
+// Calls fn(track, small_table, offsets) with each flag as a std::bool_constant, so one call
+// site picks among the eight compiled variants of an AVX-512 row loop.
+template <typename Fn>
+void with_avx512_options(const Rows& r, bool track, Fn&& fn) {
+  auto by_offsets = [&](auto t, auto small) {
+    if (r.off)
+      fn(t, small, std::true_type{});
+    else
+      fn(t, small, std::false_type{});
+  };
+  auto by_table = [&](auto t) {
+    if (r.classes <= 16)
+      by_offsets(t, std::true_type{});
+    else
+      by_offsets(t, std::false_type{});
+  };
+  if (track)
+    by_table(std::true_type{});
+  else
+    by_table(std::false_type{});
+}
+#endif
+
 // the stretch of bond b of particle i, computed the same way for both of its copies
 inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t b) {
   const int32_t j = bonds.neighbor[b];
@@ -439,8 +473,9 @@ void row_maxima(const BondStore& bonds, const double* pos, double* out) {
   for_blocks(bonds.particle_count(), [&](int begin, int end) {
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
     if (which == Isa::kAvx512) {
-      if (r.classes <= 16) return row_max_stretch_avx512<true>(begin, end, r, pos, out);
-      return row_max_stretch_avx512<false>(begin, end, r, pos, out);
+      return with_avx512_options(r, false, [&](auto, auto small, auto offsets) {
+        row_max_stretch_avx512<small.value, offsets.value>(begin, end, r, pos, out);
+      });
     }
 #endif
     row_max_stretch(begin, end, r, pos, out);
@@ -452,17 +487,16 @@ void row_maxima(const BondStore& bonds, const double* pos, double* out) {
 void set_vector_kernels(VectorKernels widest) { widest_allowed = widest; }
 void set_vector_kernels_enabled(bool enabled) { set_vector_kernels(enabled ? Isa::kAvx512 : Isa::kPortable); }
 
-void add_bond_forces(const BondStore& bonds, const double* pos, double* force, double* row_max) {
+void add_bond_forces(const BondStore& bonds, const double* pos, double* force, double* row_max, double* pos_copy) {
   const Rows r = rows_of(bonds);
   const Isa which = isa();
   for_blocks(bonds.particle_count(), [&](int begin, int end) {
+    if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
     if (which == Isa::kAvx512) {
-      const bool small = r.classes <= 16;
-      if (row_max && small) return elastic_rows_avx512<true, true>(begin, end, r, pos, force, row_max);
-      if (row_max) return elastic_rows_avx512<true, false>(begin, end, r, pos, force, row_max);
-      if (small) return elastic_rows_avx512<false, true>(begin, end, r, pos, force, row_max);
-      return elastic_rows_avx512<false, false>(begin, end, r, pos, force, row_max);
+      return with_avx512_options(r, row_max != nullptr, [&](auto track, auto small, auto offsets) {
+        elastic_rows_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, force, row_max);
+      });
     }
     if (which == Isa::kAvx2) {
       if (row_max) return elastic_rows_avx2<true>(begin, end, r, pos, force, row_max);
@@ -475,18 +509,17 @@ void add_bond_forces(const BondStore& bonds, const double* pos, double* force, d
 }
 
 void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
-                            double* force, double* row_max) {
+                            double* force, double* row_max, double* pos_copy) {
   const Rows r = rows_of(bonds);
   const Isa which = isa();
   for_blocks(bonds.particle_count(), [&](int begin, int end) {
+    if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
     if (which == Isa::kAvx512) {
-      const bool small = r.classes <= 16;
-      if (row_max && small)
-        return damped_rows_avx512<true, true>(begin, end, r, pos, vel, eta_over_e, force, row_max);
-      if (row_max) return damped_rows_avx512<true, false>(begin, end, r, pos, vel, eta_over_e, force, row_max);
-      if (small) return damped_rows_avx512<false, true>(begin, end, r, pos, vel, eta_over_e, force, row_max);
-      return damped_rows_avx512<false, false>(begin, end, r, pos, vel, eta_over_e, force, row_max);
+      return with_avx512_options(r, row_max != nullptr, [&](auto track, auto small, auto offsets) {
+        damped_rows_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, vel, eta_over_e, force,
+                                                                       row_max);
+      });
     }
     if (which == Isa::kAvx2) {
       if (row_max) return damped_rows_avx2<true>(begin, end, r, pos, vel, eta_over_e, force, row_max);

@@ -12,12 +12,14 @@ namespace periflex {
 // force_i += sum_j k s e_ij with s = |y_j - y_i| / |xi| - 1 (elastic bond forces). When
 // row_max is given it receives, per particle, the largest stretch over its intact bonds
 // (at most 0 when it has none) as a by-product, which break_stretched_bonds can reuse at the same positions.
+// pos_copy, when given, receives a copy of pos (2 per particle), made chunk by chunk inside the
+// parallel loop rather than in a pass of its own.
 void add_bond_forces(const BondStore& bonds, const double* pos, double* force,
-                     double* row_max = nullptr);
+                     double* row_max = nullptr, double* pos_copy = nullptr);
 
 // As add_bond_forces plus viscous bond damping: pair force k (s + eta_over_e * ds/dt).
 void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
-                            double* force, double* row_max = nullptr);
+                            double* force, double* row_max = nullptr, double* pos_copy = nullptr);
 
 // Strain energy sum over pairs of k |xi| s^2 / 2.
 double bond_strain_energy(const BondStore& bonds, const double* pos);

@@ -4,11 +4,12 @@
 // same stretch and break together.
 //
 // The force loop streams these arrays every step, so a stored direction holds only what it
-// must: the neighbour (4 bytes), the stiffness in single precision (4 bytes: a relative rounding
-// of 6e-8 of a material constant, the same for both copies, so forces stay equal and opposite)
-// and the squared grid offset di^2 + dj^2 (2 bytes), from which the reference length follows
-// exactly as grid_spacing sqrt(di^2 + dj^2). A reference length itself stays in double precision:
-// rounding it would pre-strain every bond.
+// must: the neighbour as an offset j - i (2 bytes; the int32 index stays beside it for everything
+// else), the stiffness in single precision (4 bytes: a relative rounding of 6e-8 of a material
+// constant, the same for both copies, so forces stay equal and opposite) and the squared grid
+// offset di^2 + dj^2 (1 byte), from which the reference length follows exactly as
+// grid_spacing sqrt(di^2 + dj^2). A reference length itself stays in double precision: rounding it
+// would pre-strain every bond.
 #pragma once
 
 #include <cmath>
@@ -21,7 +22,8 @@ namespace periflex {
 struct BondStore {
   std::vector<int64_t> row;            // size n + 1: bonds of particle i are [row[i], row[i+1])
   std::vector<int32_t> neighbor;       // j of each bond
-  std::vector<uint16_t> length_class;  // di^2 + dj^2 of the grid offset from i to j
+  std::vector<int16_t> neighbor_offset;  // j - i of each bond; empty when some |j - i| > 32767
+  std::vector<uint8_t> length_class;   // di^2 + dj^2 of the grid offset from i to j (<= 255)
   std::vector<float> stiffness;        // k = c w(|xi|) beta g V_i V_j [N]: pair force = k s; 0 once broken
   std::vector<uint8_t> broken;         // 1 once broken (never heals)
   double grid_spacing = 1.0;
@@ -33,16 +35,28 @@ struct BondStore {
   double inv_length(int64_t b) const { return inv_length_table[length_class[b]]; }
   // Fills inv_length_table for every class up to the largest stored one.
   void make_length_table() {
-    uint16_t largest = 0;
-    for (uint16_t c : length_class) largest = c > largest ? c : largest;
+    uint8_t largest = 0;
+    for (uint8_t c : length_class) largest = c > largest ? c : largest;
     inv_length_table.assign(static_cast<size_t>(largest) + 1, 0.0);
     for (size_t c = 1; c < inv_length_table.size(); ++c)
       inv_length_table[c] = 1.0 / (grid_spacing * std::sqrt(static_cast<double>(c)));
   }
+  // Fills neighbor_offset when every offset fits 16 bits (grids up to about 10,000 particles
+  // across at a horizon of 3 spacings), else leaves it empty.
+  void make_offsets() {
+    neighbor_offset.clear();
+    for (int i = 0; i < particle_count(); ++i)
+      for (int64_t b = row[i]; b < row[i + 1]; ++b)
+        if (neighbor[b] - i > 32767 || neighbor[b] - i < -32767) return;
+    neighbor_offset.resize(neighbor.size());
+    for (int i = 0; i < particle_count(); ++i)
+      for (int64_t b = row[i]; b < row[i + 1]; ++b) neighbor_offset[b] = static_cast<int16_t>(neighbor[b] - i);
+  }
   // Heap bytes held by the bond arrays and row offsets.
   size_t bytes() const {
     return row.capacity() * sizeof(int64_t) + neighbor.capacity() * sizeof(int32_t) +
-           length_class.capacity() * sizeof(uint16_t) + stiffness.capacity() * sizeof(float) +
+           neighbor_offset.capacity() * sizeof(int16_t) + length_class.capacity() * sizeof(uint8_t) +
+           stiffness.capacity() * sizeof(float) +
            broken.capacity() * sizeof(uint8_t) + inv_length_table.capacity() * sizeof(double);
   }
 };

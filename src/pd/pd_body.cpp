@@ -118,7 +118,7 @@ struct PdBody::Impl {
         for (const NotchDef& notch : def.notches) cut = cut || segments_cross(pi, pj, notch.p1, notch.p2);
         if (cut) continue;
         bonds.neighbor.push_back(j);
-        bonds.length_class.push_back(static_cast<uint16_t>(r2));
+        bonds.length_class.push_back(static_cast<uint8_t>(r2));
         k0.push_back(c * w * beta * v * v);
         nx2.push_back(double(di) * di / r2);
         initial_weight[i] += beta;
@@ -131,6 +131,7 @@ struct PdBody::Impl {
     bonds.neighbor.shrink_to_fit();
     bonds.length_class.shrink_to_fit();
     bonds.make_length_table();
+    bonds.make_offsets();
     bonds.broken.assign(bonds.neighbor.size(), 0);
   }
 
@@ -241,7 +242,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   require(def.grid_spacing > 0.0, "grid_spacing", "grid_spacing must be positive");
   require(def.thickness > 0.0, "thickness", "thickness must be positive");
   require(def.horizon_ratio >= 1.0, "horizon_ratio", "horizon_ratio must be at least 1");
-  // bonds store their squared grid offset in 16 bits
+  // bonds store their squared grid offset in 8 bits
   require(def.horizon_ratio <= kMaxHorizonRatio, "horizon_ratio",
           "horizon_ratio must be at most " + std::to_string(int(kMaxHorizonRatio)));
   require(mat.youngs_modulus > 0.0, "material.youngs_modulus", "youngs_modulus must be positive");
@@ -371,19 +372,21 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
   const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
 
   // with fracture on, the kernel also leaves the row maxima of the stretch for update_fracture
-  double* most = nullptr;
+  // (the kernel copies the positions it saw, chunk by chunk)
+  double *most = nullptr, *seen = nullptr;
   if (m.tracks_stretch()) {
     m.stretch_cache_most.resize(m.n());
-    m.stretch_cache_pos.assign(m.pos(q), m.pos(q) + 2 * m.n());
+    m.stretch_cache_pos.resize(2 * m.n());
     m.stretch_cache_valid = true;
     most = m.stretch_cache_most.data();
+    seen = m.stretch_cache_pos.data();
   }
 
   // bonds: the damped kernel only when bond damping is on (it needs velocities)
   if (eta_over_e > 0.0)
-    add_damped_bond_forces(m.bonds, m.pos(q), qd.data() + m.offset, eta_over_e, force, most);
+    add_damped_bond_forces(m.bonds, m.pos(q), qd.data() + m.offset, eta_over_e, force, most, seen);
   else
-    add_bond_forces(m.bonds, m.pos(q), force, most);
+    add_bond_forces(m.bonds, m.pos(q), force, most, seen);
 
   // mass-proportional damping -alpha m v
   if (m.global_damping > 0.0) {

@@ -159,9 +159,9 @@ struct RegionLoadDef {
   SourceLocation where;
 };
 
-// Largest horizon / grid spacing a flexible body may have (bonds keep their squared grid offset
-// in 16 bits; far beyond any useful horizon, which is 3 to 4).
-constexpr double kMaxHorizonRatio = 100.0;
+// Largest horizon / grid spacing a flexible body may have (bonds keep their squared grid offset,
+// at most (15 + 1/2)^2, in 8 bits; well beyond any useful horizon, which is 3 to 4).
+constexpr double kMaxHorizonRatio = 15.0;
 
 struct FlexBodyDef {
   std::string name;

@@ -156,6 +156,7 @@ void Dynamics::analyse(double t) {
                                   "it mass and inertia or constrain it further");
     }
   }
+  has_gravity_ = !model_.gravity_force.isZero(0.0);
   inverse_mass_ = model_.mass.unaryExpr([](double m) { return m > 0.0 ? 1.0 / m : 0.0; });
   weight_ = Eigen::VectorXd::Zero(n);
   for (int k = 0; k < nc; ++k) weight_[constrained_[k]] = weight_c_[k];
@@ -321,7 +322,11 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
 
   // generalised forces: gravity, force elements, peridynamic bodies, the mouse
   auto start = Clock::now();
-  g_ = model_.gravity_force;
+  // gravity, or zeros without it (a write, not a copy, of the whole vector)
+  if (has_gravity_)
+    g_ = model_.gravity_force;
+  else
+    g_.setZero(n);
   double dissipated = 0.0, external = 0.0, driver = 0.0;
   for (auto& f : model_.forces) {
     f->add_forces(q, qd, t, g_);

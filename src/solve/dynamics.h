@@ -113,6 +113,7 @@ class Dynamics final : public OdeSystem {
   Eigen::VectorXd mass_c_, weight_c_;  // masses and projection weights of the constrained coordinates
   Eigen::VectorXd weight_;             // projection weights by global coordinate
   Eigen::VectorXd inverse_mass_;       // 1 / m by global coordinate (0 where m = 0)
+  bool has_gravity_ = true;
 
   // the reduced system: what stays in the matrix once the eliminated joints are condensed
   CondensedAttachments condensed_;

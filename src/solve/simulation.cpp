@@ -283,8 +283,20 @@ void Simulation::Impl::advance(double h) {
 }
 
 void Simulation::Impl::check_divergence() {
-  // non-finite state
-  if (!state.q.allFinite() || !state.qd.allFinite()) {
+  // non-finite state, and the kinetic energy, in one pass: a NaN or infinity anywhere in q or qd
+  // makes the sums non-finite (massless coordinates too: 0 * inf is NaN)
+  const Eigen::Index n = state.q.size();
+  const double* pq = state.q.data();
+  const double* pv = state.qd.data();
+  const double* pm = model->mass.data();
+  double q_sum = 0.0, kinetic2 = 0.0, v_sum = 0.0;
+#pragma omp simd reduction(+ : q_sum, kinetic2, v_sum)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    q_sum += pq[i] * 0.0;
+    v_sum += pv[i] * 0.0;
+    kinetic2 += pm[i] * pv[i] * pv[i];
+  }
+  if (!std::isfinite(q_sum) || !std::isfinite(v_sum)) {
     throw NumericalError({"state (positions / velocities)", steps, time, "a coordinate became NaN or infinite",
                           "lower solver.dt, use a higher-order integrator or enable constraint correction"});
   }
@@ -315,7 +327,7 @@ void Simulation::Impl::check_divergence() {
   // grows the positions while the velocities stay small, e.g. Verlet exactly at its limit)
   const double fed = std::abs(state.work[kWorkExternal]) + std::abs(state.work[kWorkDriver]);
   const double available = energy_scale + fed;
-  const double kinetic = kinetic_energy();
+  const double kinetic = 0.5 * kinetic2;
   const bool check_elastic = steps % kElasticCheckInterval == 0;
   const double mechanical = check_elastic ? kinetic + elastic_energy() : kinetic;
   if (mechanical > kEnergyGrowth * available) {

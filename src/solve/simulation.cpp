@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/parallel_chunks.h"
 #include "solve/dynamics.h"
 #include "solve/integrator.h"
 #include "solve/system_model.h"
@@ -49,6 +50,7 @@ struct Simulation::Impl {
 
   OdeState state;
   OdeState saved;                  // the state before the step in progress (kept allocated)
+  std::vector<double> chunk_sums;  // partial sums of check_divergence, per chunk
   double time = 0.0;
   long steps = 0;
   bool initialized = false;
@@ -209,8 +211,13 @@ void Simulation::Impl::initialize() {
 
 void Simulation::Impl::advance(double h) {
   // keep the last good state: nothing non-finite leaves the solver
-  saved.q = state.q;  // copies into the kept buffers: no allocation per step
-  saved.qd = state.qd;
+  // copies into the kept buffers: no allocation per step
+  saved.q.resize(state.q.size());
+  saved.qd.resize(state.qd.size());
+  parallel_chunks(state.q.size(), [&](int64_t, int64_t begin, int64_t end) {
+    std::copy(state.q.data() + begin, state.q.data() + end, saved.q.data() + begin);
+    std::copy(state.qd.data() + begin, state.qd.data() + end, saved.qd.data() + begin);
+  });
   saved.work = state.work;
   const double saved_time = time;
   const auto start = Clock::now();
@@ -285,16 +292,29 @@ void Simulation::Impl::advance(double h) {
 void Simulation::Impl::check_divergence() {
   // non-finite state, and the kinetic energy, in one pass: a NaN or infinity anywhere in q or qd
   // makes the sums non-finite (massless coordinates too: 0 * inf is NaN)
-  const Eigen::Index n = state.q.size();
+  // (per-chunk partial sums added in chunk order: the same bits on any thread count)
+  const int64_t n = state.q.size();
   const double* pq = state.q.data();
   const double* pv = state.qd.data();
   const double* pm = model->mass.data();
-  double q_sum = 0.0, kinetic2 = 0.0, v_sum = 0.0;
-#pragma omp simd reduction(+ : q_sum, kinetic2, v_sum)
-  for (Eigen::Index i = 0; i < n; ++i) {
-    q_sum += pq[i] * 0.0;
-    v_sum += pv[i] * 0.0;
-    kinetic2 += pm[i] * pv[i] * pv[i];
+  chunk_sums.assign(3 * chunk_count(n), 0.0);
+  parallel_chunks(n, [&](int64_t chunk, int64_t begin, int64_t end) {
+    double q_zero = 0.0, v_zero = 0.0, twice_kinetic = 0.0;
+#pragma omp simd reduction(+ : q_zero, v_zero, twice_kinetic)
+    for (int64_t i = begin; i < end; ++i) {
+      q_zero += pq[i] * 0.0;
+      v_zero += pv[i] * 0.0;
+      twice_kinetic += pm[i] * pv[i] * pv[i];
+    }
+    chunk_sums[3 * chunk] = q_zero;
+    chunk_sums[3 * chunk + 1] = v_zero;
+    chunk_sums[3 * chunk + 2] = twice_kinetic;
+  });
+  double q_sum = 0.0, v_sum = 0.0, kinetic2 = 0.0;
+  for (size_t c = 0; c < chunk_sums.size(); c += 3) {
+    q_sum += chunk_sums[c];
+    v_sum += chunk_sums[c + 1];
+    kinetic2 += chunk_sums[c + 2];
   }
   if (!std::isfinite(q_sum) || !std::isfinite(v_sum)) {
     throw NumericalError({"state (positions / velocities)", steps, time, "a coordinate became NaN or infinite",

@@ -46,6 +46,7 @@ class RecorderFrameSink : public FrameSink {
     stats.render_seconds = recorded.draw_seconds;
     stats.encode_seconds = recorded.png_seconds + recorded.movie_seconds;
     stats.submit_seconds = recorded.submit_seconds;
+    stats.screenshot_written = recorded.screenshots > 0;
     stats.where = where_;
     return stats;
   }

@@ -17,6 +17,7 @@ struct FrameStats {
   double render_seconds = 0.0;  // drawing and read-back, in the draw thread
   double encode_seconds = 0.0;  // PNG encoding and writing plus feeding ffmpeg, in the encoder threads
   double submit_seconds = 0.0;  // what the solver's thread spent handing snapshots over
+  bool screenshot_written = false;
   std::string where;            // frames directory / movie / screenshot written
 };
 

@@ -5,17 +5,22 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 
 #include "cli/frame_sink.h"
+#include "cli/interrupt.h"
 #include "cli/progress_bar.h"
 #include "cli/scene_setup.h"
+#include "core/cpu_time.h"
 #include "core/error.h"
+#include "core/sim_time.h"
 #include "output/atomic_file.h"
 #include "output/series_writer.h"
 #include "output/summary_writer.h"
 #include "output/vtk_series.h"
+#include "scene/toml_reader.h"
 #include "solve/simulation.h"
 
 namespace periflex {
@@ -28,14 +33,45 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Times at which rows, frames and snapshots fall due, each an exact multiple of its interval.
+// Times at which rows or frames fall due: k * interval exactly, each reached by a step that
+// lands on it (Simulation::step_toward), whatever dt is.
 struct Schedule {
-  double interval = 0.0;
+  double interval = 0.0;  // 0: never
   long next_index = 0;
-  double next_time() const { return next_index * interval; }
-  bool due(double t, double eps) const { return interval > 0 && t >= next_time() - eps; }
-  void advance_past(double t, double eps) {
-    while (next_time() <= t + eps) ++next_index;
+  double next_time() const { return static_cast<double>(next_index) * interval; }
+  bool due(double t, double dt) const { return interval > 0 && time_reached(t, next_time(), dt); }
+  // the first k * interval after t (computed, not counted: no loop over skipped times)
+  void advance_past(double t, double dt) {
+    const double k = std::floor((t + time_tolerance(dt, t)) / interval) + 1.0;
+    next_index = std::max(next_index + 1, static_cast<long>(std::min(k, 9.0e18)));
+  }
+};
+
+// What the run writes besides the loop's own state, closed on every way out.
+struct RunOutputs {
+  std::unique_ptr<FrameSink> frames;
+  std::unique_ptr<VtkSeries> vtk;
+  FrameStats frame_stats;
+  std::string frame_error;  // why the frames could not be finished, if they could not
+
+  // waits for the frames in flight and closes the VTK series; a failure is kept, not thrown
+  void finish() {
+    if (frames) {
+      try {
+        frame_stats = frames->finish();
+      } catch (const std::exception& e) {
+        frame_error = e.what();
+      }
+      frames.reset();
+    }
+    if (vtk) {
+      try {
+        vtk->finish();
+      } catch (const std::exception& e) {
+        if (frame_error.empty()) frame_error = e.what();
+      }
+      vtk.reset();
+    }
   }
 };
 
@@ -54,16 +90,26 @@ static void parse_frame_size(RunOptions& o) {
 
 int run_command(const RunOptions& requested) {
   const auto wall_start = Clock::now();
+  catch_interrupts();
   RunOptions options = requested;
   parse_frame_size(options);
   if (options.snapshot_at && options.screenshot_path.empty())
     throw InputError({"command line", 0, 0, "--snapshot-at"}, "needs --screenshot FILE to say where the frame goes");
+  // asking for frames or a movie is asking for rendering
+  if (!options.frames_dir.empty() || !options.movie_path.empty()) options.render = true;
   SceneDef scene = load_scene_with_options(options.scene_path, options.overrides, options.until, options.dt,
                                            options.integrator);
+  if (options.snapshot_at && !(*options.snapshot_at >= 0.0 && *options.snapshot_at <= scene.solver.end_time)) {
+    throw InputError({"command line", 0, 0, "--snapshot-at"},
+                     "the screenshot time must lie between 0 and the end time " + format_number(scene.solver.end_time) +
+                         " s (--until sets the end time)");
+  }
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
   const std::string out_dir = options.out_dir.empty() ? "out/" + scene.name : options.out_dir;
   ensure_directory(out_dir);
+  // a summary left by an earlier run would speak for this one until it writes its own
+  std::filesystem::remove(out_dir + "/summary.json");
   if (options.movie_in_out_dir) options.movie_path = out_dir + "/movie.mp4";
   if (options.render && options.frames_dir.empty() && options.movie_path.empty()) options.frames_dir = out_dir + "/frames";
 
@@ -79,31 +125,23 @@ int run_command(const RunOptions& requested) {
   write_summary(summary_path, info, summary);
 
   const bool has_particles = info.particles > 0;
-  SeriesWriter series(out_dir + "/series.csv", sim.probe_columns(), has_particles);
+  std::unique_ptr<SeriesWriter> series;
 
-  // Rendering and VTK output are optional; the sink checks its own preconditions first.
-  std::unique_ptr<FrameSink> frames;
+  // from here on every way out rewrites summary.json with what really happened
+  RunOutputs outputs;
   Snapshot snapshot;
-  if (options.render || options.snapshot_at) {
-    sim.fill_snapshot(snapshot);
-    frames = make_frame_sink(options, out_dir, snapshot.geometry);
-  }
-  std::unique_ptr<VtkSeries> vtk;
-  if (options.vtk_every > 0 && has_particles) vtk = std::make_unique<VtkSeries>(out_dir + "/vtk");
-
   const double end_time = sim.end_time();
   const double dt = scene.solver.dt;
-  const double eps = 1e-9 * dt;
   Schedule rows{scene.solver.output_interval > 0 ? scene.solver.output_interval : 10 * dt};
   Schedule frame_times;
   if (options.render) frame_times.interval = options.frame_every > 0 ? options.frame_every : end_time / 100.0;
   std::optional<double> snapshot_time = options.snapshot_at;
 
   ProgressBar progress(end_time, !options.quiet && stderr_is_terminal());
-  double solver_seconds = 0.0;
+  double solver_seconds = 0.0, solver_cpu = 0.0;
   double last_row_time = -1.0;
   auto write_row = [&]() {
-    if (!series.write(sim.sample())) {
+    if (!series->write(sim.sample())) {
       throw NumericalError({"output sample", sim.step_count(), sim.time(), "a value to be written is not finite",
                             "lower solver.dt or enable constraint correction"});
     }
@@ -111,78 +149,108 @@ int run_command(const RunOptions& requested) {
   };
   auto emit_due_outputs = [&]() {
     const double t = sim.time();
-    if (rows.due(t, eps)) {
+    if (rows.due(t, dt)) {
       write_row();
-      rows.advance_past(t, eps);
+      rows.advance_past(t, dt);
     }
-    const bool frame_due = frame_times.due(t, eps);
-    const bool shot_due = snapshot_time && t >= *snapshot_time - eps;
-    const bool vtk_due = vtk && sim.step_count() % options.vtk_every == 0;
+    const bool frame_due = frame_times.due(t, dt);
+    const bool shot_due = snapshot_time && time_reached(t, *snapshot_time, dt);
+    const bool vtk_due = outputs.vtk && sim.step_count() % options.vtk_every == 0;
     if (frame_due || shot_due || vtk_due) sim.fill_snapshot(snapshot);
     if (frame_due) {
-      frames->submit(snapshot);
-      frame_times.advance_past(t, eps);
+      outputs.frames->submit(snapshot);
+      frame_times.advance_past(t, dt);
     }
     if (shot_due) {
-      frames->submit(snapshot, true);
+      outputs.frames->submit(snapshot, true);
       snapshot_time.reset();
     }
-    if (vtk_due) vtk->write(snapshot);
+    if (vtk_due) outputs.vtk->write(snapshot);
   };
 
   int exit_code = kExitOk;
+  auto fail = [&](const char* status, int code, const std::string& message) {
+    progress.finish();
+    std::fprintf(stderr, "periflex: %s\n", message.c_str());
+    summary.status = status;
+    summary.message = message;
+    exit_code = code;
+  };
+  const double worker_cpu_start = omp_worker_cpu_seconds();
   try {
+    series = std::make_unique<SeriesWriter>(out_dir + "/series.csv", sim.probe_columns(), has_particles);
+    // rendering and VTK output are optional; the sink checks its own preconditions first
+    if (options.render || options.snapshot_at) {
+      sim.fill_snapshot(snapshot);
+      outputs.frames = make_frame_sink(options, out_dir, snapshot.geometry);
+    }
+    if (options.vtk_every > 0 && has_particles) outputs.vtk = std::make_unique<VtkSeries>(out_dir + "/vtk");
+
     sim.initialize();
     emit_due_outputs();
-    while (sim.time() < end_time - eps) {
-      // Land exactly on the next frame time and on the end time.
-      double target = std::min(sim.time() + dt, end_time);
+    while (!sim.reached(end_time)) {
+      if (const int signal_number = pending_interrupt()) {
+        fail("interrupted", interrupt_exit_code(signal_number),
+             std::string("interrupted by ") + (signal_number == SIGINT ? "SIGINT" : "SIGTERM") + " at t = " +
+                 format_number(sim.time()) + " s");
+        break;
+      }
+      // the next instant something is due: the end, a row, a frame or the screenshot
+      double target = end_time;
+      if (rows.interval > 0) target = std::min(target, rows.next_time());
       if (frame_times.interval > 0) target = std::min(target, frame_times.next_time());
-      if (snapshot_time) target = std::min(target, std::max(*snapshot_time, sim.time() + eps));
+      if (snapshot_time) target = std::min(target, *snapshot_time);
       const auto step_start = Clock::now();
-      sim.advance_to(target);
+      const double cpu_start = thread_cpu_seconds();
+      sim.step_toward(target);
+      solver_cpu += thread_cpu_seconds() - cpu_start;
       solver_seconds += seconds_since(step_start);
       emit_due_outputs();
       progress.update(sim.time(), sim.step_count());
     }
-    // The last state is always in the series.
+    // the last state is always in the series
     if (last_row_time != sim.time()) write_row();
-    summary.status = "ok";
+    if (exit_code == kExitOk) summary.status = "ok";
   } catch (const NumericalError& error) {
-    progress.finish();
-    std::fprintf(stderr, "periflex: numerical failure: %s\n", error.what());
-    summary.status = "numerical_failure";
-    summary.message = error.what();
-    exit_code = kExitNumerical;
+    fail("numerical_failure", kExitNumerical, std::string("numerical failure: ") + error.what());
+  } catch (const InputError& error) {
+    fail("bad_input", kExitBadInput, std::string("error: ") + error.what());
+  } catch (const std::exception& error) {
+    fail("error", kExitOther, std::string("error: ") + error.what());
   }
   progress.finish();
+  solver_cpu += omp_worker_cpu_seconds() - worker_cpu_start;
 
-  FrameStats frame_stats;
-  if (frames) frame_stats = frames->finish();
-  if (vtk) vtk->finish();
+  outputs.finish();
+  if (!outputs.frame_error.empty() && exit_code == kExitOk) {
+    fail("error", kExitOther, "error: " + outputs.frame_error);
+  }
+  const FrameStats& frame_stats = outputs.frame_stats;
 
   summary.exit_code = exit_code;
   summary.steps = sim.step_count();
   summary.simulated_time = sim.time();
   summary.solver_time = solver_seconds;
+  summary.solver_cpu_time = solver_cpu;
   summary.wall_time = seconds_since(wall_start);
-  summary.rows_written = series.rows();
+  summary.rows_written = series ? series->rows() : 0;
   summary.frames_written = frame_stats.frames;
   summary.render_time = frame_stats.render_seconds + frame_stats.encode_seconds;
   write_summary(summary_path, info, summary);
 
-  std::printf("periflex: %s %s: t = %.6g s in %ld steps, %.2f s wall (solver %.2f s, %.0f steps/s)",
-              scene.name.c_str(), exit_code == kExitOk ? "done" : "stopped", sim.time(), sim.step_count(),
-              summary.wall_time, solver_seconds, solver_seconds > 0 ? sim.step_count() / solver_seconds : 0.0);
-  if (frames && frame_stats.frames > 0) {
+  const char* verb = exit_code == kExitOk ? "done" : summary.status == "interrupted" ? "interrupted" : "stopped";
+  std::printf("periflex: %s %s: t = %.6g s in %ld steps, %.2f s wall (solver %.2f s wall, %.2f s CPU, %.0f steps/s)",
+              scene.name.c_str(), verb, sim.time(), sim.step_count(), summary.wall_time, solver_seconds, solver_cpu,
+              steps_per_second(summary));
+  if (frame_stats.frames > 0) {
     // drawing and encoding ran in threads beside the solver, which only paid for the hand-over
     std::printf("; %ld frames (render %.2f s, encode %.2f s, hand-over %.2f s) in %s", frame_stats.frames,
                 frame_stats.render_seconds, frame_stats.encode_seconds, frame_stats.submit_seconds,
                 frame_stats.where.c_str());
-  } else if (frames) {
-    std::printf("; screenshot in %s", frame_stats.where.c_str());
   }
+  if (frame_stats.screenshot_written) std::printf("; screenshot in %s", options.screenshot_path.c_str());
   std::printf("; outputs in %s\n", out_dir.c_str());
+  std::fflush(stdout);
   return exit_code;
 }
 

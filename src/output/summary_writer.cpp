@@ -12,6 +12,10 @@ static nlohmann::json finite_or_null(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
 }
 
+double steps_per_second(const RunSummary& run) {
+  return run.solver_time > 0 ? static_cast<double>(run.steps) / run.solver_time : 0.0;
+}
+
 void write_summary(const std::string& path, const ModelInfo& info, const RunSummary& run) {
   nlohmann::json j;
   j["scene"] = run.scene;
@@ -22,7 +26,8 @@ void write_summary(const std::string& path, const ModelInfo& info, const RunSumm
   j["simulated_time"] = finite_or_null(run.simulated_time);
   j["wall_time"] = finite_or_null(run.wall_time);
   j["solver_time"] = finite_or_null(run.solver_time);
-  j["steps_per_second"] = run.wall_time > 0 ? finite_or_null(run.steps / run.wall_time) : nlohmann::json(nullptr);
+  j["solver_cpu_time"] = finite_or_null(run.solver_cpu_time);
+  j["steps_per_second"] = run.solver_time > 0 ? finite_or_null(steps_per_second(run)) : nlohmann::json(nullptr);
   j["rows_written"] = run.rows_written;
   j["frames_written"] = run.frames_written;
   j["render_time"] = finite_or_null(run.render_time);

@@ -16,14 +16,18 @@ struct RunSummary {
   long steps = 0;
   double simulated_time = 0.0;
   double wall_time = 0.0;         // seconds, solver and output
-  double solver_time = 0.0;       // seconds in Simulation::step
-  std::string status = "running"; // running | ok | numerical_failure | error
+  double solver_time = 0.0;       // wall seconds in stepping
+  double solver_cpu_time = 0.0;   // processor seconds of the solver's threads while stepping
+  std::string status = "running"; // running | ok | interrupted | numerical_failure | bad_input | error
   int exit_code = 0;
   std::string message;
   long rows_written = 0;
   long frames_written = 0;
   double render_time = 0.0;
 };
+
+// Steps per second of the solver's wall time: the figure the closing line prints too.
+double steps_per_second(const RunSummary& run);
 
 // Writes summary.json for `info` and `run` to `path` (atomically).
 void write_summary(const std::string& path, const ModelInfo& info, const RunSummary& run);

@@ -78,10 +78,16 @@ class Simulation {
   // Projects q then qd onto the constraints at t = 0 (sizes in info()), checks the explicit
   // stability limit and records the initial energies. step() calls it when not yet called.
   void initialize();
-  // One step of dt (several equal sub-steps when solver.auto_substep needs them).
+  // One step of dt (several equal sub-steps when solver.auto_substep needs them). The time after
+  // n steps is the time of the last landing plus n * dt, not a running sum.
   void step();
+  // One step toward t: a step of dt, or the last one shortened to land on t exactly. Returns
+  // true once the time is t (time_reached in core/sim_time.h); then it takes no step.
+  bool step_toward(double t);
   // Steps of dt up to exactly t, the last one shortened to land on it.
   void advance_to(double t);
+  // True when the time has reached t (the one tolerance every caller shares).
+  bool reached(double t) const;
   double time() const;
   long step_count() const;
   double end_time() const;

@@ -1,0 +1,31 @@
+#include "cli/interrupt.h"
+
+#include <csignal>
+
+namespace periflex {
+
+namespace {
+
+volatile std::sig_atomic_t g_signal = 0;
+
+extern "C" void on_interrupt(int signal_number) { g_signal = signal_number; }
+
+}  // namespace
+
+void catch_interrupts() {
+  g_signal = 0;
+  // SA_RESETHAND: the handler runs once, then the default action is back, so a second Ctrl-C
+  // stops a run whose clean end takes too long
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESETHAND | SA_RESTART;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+int pending_interrupt() { return g_signal; }
+
+int interrupt_exit_code(int signal_number) { return 128 + signal_number; }
+
+}  // namespace periflex

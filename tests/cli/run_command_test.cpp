@@ -1,0 +1,231 @@
+// `periflex run` as typed: runs end at their end time whatever the step, rows and frames land on
+// their nominal times, Ctrl-C and kill stop a run cleanly, and summary.json tells the truth on
+// every way out.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <csignal>
+#include <regex>
+
+#include "child_run.h"
+#include "run_output_files.h"
+#include "run_program.h"
+#include "study/elliptic.h"
+
+namespace periflex::testing {
+namespace {
+
+std::string data_scene(const std::string& file) { return std::string(PERIFLEX_TEST_DATA) + "/scenes/" + file; }
+
+// Generous wall-time limits: a hang fails the test instead of holding up the suite.
+constexpr double kLimit = 120.0;
+
+// A run with a step that makes t / dt pass 1000 ended at its end time only by luck before:
+// the loop and the solver disagreed on "reached", and the program spun at 100% CPU for ever.
+TEST(RunCommand, RunsEndAtTheEndTimeWhateverTheStep) {
+  struct Case {
+    const char* scene;
+    const char* dt;
+    double end;
+  };
+  for (const Case& c : {Case{"four_bar.toml", "2e-4", 3.0}, Case{"double_pendulum.toml", "1e-4", 10.0}}) {
+    const auto out = fresh_directory(std::string("end_") + c.scene);
+    const auto r = run_child({"run", scene(c.scene), "--set", std::string("solver.dt=") + c.dt, "--out", out.string(),
+                              "--quiet"},
+                             kLimit);
+    ASSERT_FALSE(r.timed_out) << c.scene << " did not end: " << r.output;
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const auto summary = read_summary(out / "summary.json");
+    EXPECT_EQ(summary["status"], "ok");
+    EXPECT_DOUBLE_EQ(summary["simulated_time"].get<double>(), c.end);
+    const Series s = read_series(out / "series.csv");
+    ASSERT_FALSE(s.rows.empty());
+    EXPECT_DOUBLE_EQ(s.rows.back()[0], c.end);
+  }
+}
+
+// Over two million steps (t / dt = 2e6), every row is stamped with k * interval exactly and
+// holds the state at that time: the fall y = -g t^2 / 2, which Verlet reproduces exactly.
+TEST(RunCommand, LongRunRowsLandOnTheirNominalTimes) {
+  const auto out = fresh_directory("long_run");
+  const auto r = run_child({"run", data_scene("run/falling_body.toml"), "--out", out.string(), "--quiet"}, kLimit);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Series s = read_series(out / "series.csv");
+  ASSERT_EQ(s.rows.size(), 21u);  // t = 0, 0.1, ..., 2.0
+  const int y = s.column("probe.block.y");
+  for (size_t k = 0; k < s.rows.size(); ++k) {
+    const double t = s.rows[k][0];
+    // the time written is the nominal one (12 significant digits are written)
+    EXPECT_NEAR(t, 0.1 * static_cast<double>(k), 1e-12) << "row " << k;
+    // and the state is the state at that time: round-off of 2e6 steps only
+    EXPECT_NEAR(s.rows[k][y], -0.5 * 9.81 * t * t, 1e-8) << "row " << k << " at t = " << t;
+  }
+}
+
+// A step that does not divide the output interval: rows still fall on k * 0.5 s, and their
+// values are the pendulum's at those times (against the closed form), not a step later.
+TEST(RunCommand, RowsWithAStepThatDoesNotDivideTheIntervalHoldTheStateAtTheirTime) {
+  const auto out = fresh_directory("nominal_rows");
+  const auto r = run_child({"run", scene("studies/models/pendulum.toml"), "--set", "solver.dt=3e-3", "--set",
+                            "solver.output_interval=0.5", "--set", "solver.end_time=60", "--set",
+                            "solver.correction.method=projection", "--out", out.string(), "--quiet"},
+                           kLimit);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const Series s = read_series(out / "series.csv");
+  ASSERT_EQ(s.rows.size(), 121u);
+  // the bar (1 m, pinned at one end) is a compound pendulum of length 2/3 m released at 90 degrees:
+  // theta(t) = 2 asin(k sn(K - w t | k^2)) from the downward vertical, k = sin(45 deg)
+  const double k = std::sin(0.25 * M_PI), m = k * k, w = std::sqrt(9.81 / (2.0 / 3.0));
+  const double quarter = elliptic_k(m);
+  const int x = s.column("probe.tip.x");
+  double worst = 0.0;
+  for (size_t n = 0; n < s.rows.size(); ++n) {
+    const double t = s.rows[n][0];
+    ASSERT_NEAR(t, 0.5 * static_cast<double>(n), 1e-12) << "row " << n;
+    const double theta = 2.0 * std::asin(k * jacobi_elliptic(quarter - w * t, m).sn);
+    worst = std::max(worst, std::abs(s.rows[n][x] - std::sin(theta)));
+  }
+  // rk4 at 3 ms over 60 s is accurate to about 1e-7 m; a row one step late is off by up to
+  // |v| dt = 1.3e-2 m
+  EXPECT_LT(worst, 1e-5);
+}
+
+#ifdef PERIFLEX_TEST_RENDER
+// The reproduction: frames every 1.26 ms with steps of 0.5 us that do not divide it.
+TEST(RunCommand, FramesAtAnIntervalTheStepDoesNotDivideReachTheEnd) {
+  const auto out = fresh_directory("odd_frames");
+  const auto frames = out / "frames";
+  const auto r = run_child({"run", scene("flexible_slider_crank.toml"), "--render", "--frames", frames.string(),
+                            "--frame-every", "0.00126", "--until", "0.006", "--size", "160x96", "--out",
+                            out.string(), "--quiet"},
+                           kLimit);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(count_files(frames, ".png"), 5);  // t = 0, 1.26, 2.52, 3.78, 5.04 ms
+  EXPECT_EQ(read_summary(out / "summary.json")["frames_written"], 5);
+}
+
+// --movie alone asks for a movie: it is recorded, not silently ignored.
+TEST(RunCommand, MovieWithoutRenderFlagIsRecorded) {
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
+  const auto out = fresh_directory("movie_alone");
+  const auto movie = out / "m.mp4";
+  const auto r = run_child({"run", scene("pendulum.toml"), "--movie", movie.string(), "--frame-every", "0.5",
+                            "--size", "160x96", "--out", out.string(), "--quiet"},
+                           kLimit);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(movie_frames(movie), 11);  // t = 0, 0.5, ..., 5
+}
+
+// A screenshot time after the end used to print "screenshot in ..." and write nothing.
+TEST(RunCommand, ScreenshotAfterTheEndIsRefused) {
+  const auto out = fresh_directory("late_shot");
+  const auto r = run_child({"run", scene("pendulum.toml"), "--snapshot-at", "9", "--screenshot",
+                            (out / "s.png").string(), "--out", out.string(), "--quiet"},
+                           kLimit);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--snapshot-at"), std::string::npos) << r.output;
+}
+#endif
+
+// Stopping with a signal once `ready` holds: the run ends with 128 + the signal, closes its
+// rows, frames and movie, and summary.json says it was interrupted and counts what was written.
+std::filesystem::path expect_clean_interrupt(const std::string& name, int signal_number,
+                                             std::vector<std::string> extra,
+                                             const std::function<bool(const std::filesystem::path&)>& ready) {
+  const auto out = fresh_directory(name);
+  std::vector<std::string> args{"run", scene("glass_branching.toml"), "--out", out.string(), "--quiet"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  Child child(args);
+  EXPECT_TRUE(child.started());
+  EXPECT_TRUE(child.wait_until([&] { return ready(out); }, 60.0)) << name << ": never got ready";
+  child.send(signal_number);
+  const ChildResult r = child.finish(60.0);
+  EXPECT_FALSE(r.timed_out) << r.output;
+  EXPECT_EQ(r.signal, 0) << "killed by signal " << r.signal << ": " << r.output;
+  EXPECT_EQ(r.exit_code, 128 + signal_number) << r.output;
+  EXPECT_NE(r.output.find("interrupted"), std::string::npos) << r.output;
+
+  const auto summary = read_summary(out / "summary.json");
+  EXPECT_TRUE(summary.is_object()) << "summary.json is not valid JSON";
+  if (!summary.is_object()) return out;
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["exit_code"], 128 + signal_number);
+  EXPECT_LT(summary["simulated_time"].get<double>(), 4.6e-5);
+  const Series s = read_series(out / "series.csv");
+  EXPECT_EQ(s.incomplete_rows, 0);
+  EXPECT_EQ(summary["rows_written"].get<long>(), static_cast<long>(s.rows.size()));
+  if (!s.rows.empty()) {
+    EXPECT_DOUBLE_EQ(s.rows.back()[0], summary["simulated_time"].get<double>());
+  }
+  return out;
+}
+
+bool has_rows(const std::filesystem::path& out, size_t n) {
+  std::ifstream in(out / "series.csv");
+  return static_cast<size_t>(std::count(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>(), '\n')) >
+         n;
+}
+
+TEST(RunCommand, SigintMidRunStopsCleanly) {
+  expect_clean_interrupt("sigint_mid", SIGINT, {}, [](const auto& out) { return has_rows(out, 3); });
+}
+
+TEST(RunCommand, SigtermMidRunStopsCleanly) {
+  expect_clean_interrupt("sigterm_mid", SIGTERM, {}, [](const auto& out) { return has_rows(out, 3); });
+}
+
+TEST(RunCommand, SigintDuringSetUpStopsCleanly) {
+  // as soon as the first summary.json is there: the model is built, the run not yet started
+  expect_clean_interrupt("sigint_setup", SIGINT, {},
+                         [](const auto& out) { return std::filesystem::exists(out / "summary.json"); });
+}
+
+#ifdef PERIFLEX_TEST_RENDER
+TEST(RunCommand, SigtermWhileRecordingLeavesAPlayableMovieAndFrames) {
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
+  const auto frames = fresh_directory("sigterm_movie_frames");
+  const auto movie = fresh_directory("sigterm_movie_file") / "m.mp4";
+  const auto out = expect_clean_interrupt(
+      "sigterm_movie", SIGTERM,
+      {"--frames", frames.string(), "--movie", movie.string(), "--frame-every", "2e-7", "--size", "160x96"},
+      [](const auto& dir) { return has_rows(dir, 3); });
+  const long written = read_summary(out / "summary.json")["frames_written"].get<long>();
+  EXPECT_GT(written, 0);
+  EXPECT_EQ(count_files(frames, ".png"), written);
+  EXPECT_EQ(movie_frames(movie), written);
+}
+#endif
+
+// A write that fails after set-up (here: series.csv on a full disk) ends the run with a message,
+// and summary.json says so instead of "running".
+TEST(RunCommand, FailedWriteIsToldInTheSummary) {
+  const auto out = fresh_directory("disk_full");
+  std::filesystem::create_symlink("/dev/full", out / "series.csv");
+  const auto r = run_child({"run", scene("pendulum.toml"), "--out", out.string(), "--quiet"}, kLimit);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_NE(r.output.find("series.csv"), std::string::npos) << r.output;
+  const auto summary = read_summary(out / "summary.json");
+  EXPECT_EQ(summary["status"], "error");
+  EXPECT_EQ(summary["exit_code"], 1);
+  EXPECT_NE(summary["message"].get<std::string>().find("series.csv"), std::string::npos);
+}
+
+// The closing line and summary.json give the same steps per second, and the solver's processor
+// time beside its wall time.
+TEST(RunCommand, ClosingLineAndSummaryAgree) {
+  const auto out = fresh_directory("agree");
+  const auto r = run_child({"run", scene("double_pendulum.toml"), "--out", out.string(), "--quiet"}, kLimit);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto summary = read_summary(out / "summary.json");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(r.output, m, std::regex(R"(([0-9]+) steps/s)"))) << r.output;
+  EXPECT_NEAR(std::stod(m[1]), summary["steps_per_second"].get<double>(), 0.5);
+  ASSERT_TRUE(summary.contains("solver_cpu_time"));
+  EXPECT_GT(summary["solver_cpu_time"].get<double>(), 0.0);
+  EXPECT_EQ(summary["steps"], 10000);
+}
+
+}  // namespace
+}  // namespace periflex::testing

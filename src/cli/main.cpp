@@ -18,6 +18,7 @@
 #include "cli/stability_command.h"
 #include "cli/study_command.h"
 #include "core/error.h"
+#include "core/thread_waiting.h"
 
 namespace {
 
@@ -129,6 +130,7 @@ int run_main(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  periflex::restart_with_passive_waiting(argv);
   try {
     return run_main(argc, argv);
   } catch (const periflex::InputError& error) {

@@ -1,0 +1,96 @@
+// Every scene shipped in scenes/ run as a user types it, to its end time, in each output mode:
+// plain (series.csv, summary.json), a PNG sequence (run --frames) and a movie (run --movie).
+// Each must end by itself with exit 0, with the exact number of rows and frames its intervals
+// give. Frames are small (160x96): what is checked is the run loop, not the pictures.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "../cli/child_run.h"
+#include "../cli/run_output_files.h"
+#include "scene/scene_loader.h"
+
+namespace periflex::testing {
+namespace {
+
+// a slow scene on a loaded two-core machine takes about a minute; a hang is cut off here
+constexpr double kLimit = 600.0;
+
+std::vector<std::string> shipped_scenes() {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes")) {
+    if (entry.path().extension() == ".toml") names.push_back(entry.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::string scene_file(const std::string& name) {
+  return std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/" + name + ".toml";
+}
+
+// Instants k * interval in [0, end], counted as the run counts them.
+long instants(double interval, double end) { return static_cast<long>(std::floor(end / interval + 1e-9)) + 1; }
+
+enum class Mode { kPlain, kFrames, kMovie };
+
+std::string mode_name(Mode m) { return m == Mode::kPlain ? "plain" : m == Mode::kFrames ? "frames" : "movie"; }
+
+class EveryScene : public ::testing::TestWithParam<std::tuple<std::string, Mode>> {};
+
+TEST_P(EveryScene, RunsToItsEndWithExactRowsAndFrames) {
+  const auto& [name, mode] = GetParam();
+#ifndef PERIFLEX_TEST_RENDER
+  if (mode != Mode::kPlain) GTEST_SKIP() << "this build has no off-screen renderer";
+#endif
+  if (mode == Mode::kMovie && !have_program("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
+  const SceneDef scene = load_scene(scene_file(name));
+  const double end = scene.solver.end_time;
+  const double interval = scene.solver.output_interval > 0 ? scene.solver.output_interval : 10 * scene.solver.dt;
+
+  const auto out = std::filesystem::current_path() / ("every_scene_" + name + "_" + mode_name(mode));
+  std::filesystem::remove_all(out);
+  std::vector<std::string> args{"run", scene_file(name), "--out", out.string(), "--quiet"};
+  if (mode == Mode::kFrames) args.insert(args.end(), {"--frames", (out / "frames").string(), "--size", "160x96"});
+  if (mode == Mode::kMovie) args.insert(args.end(), {"--movie", (out / "movie.mp4").string(), "--size", "160x96"});
+  const ChildResult r = run_child(args, kLimit);
+  ASSERT_FALSE(r.timed_out) << name << " did not end within " << kLimit << " s";
+  ASSERT_EQ(r.signal, 0) << r.output;
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+
+  const auto summary = read_summary(out / "summary.json");
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_DOUBLE_EQ(summary["simulated_time"].get<double>(), end);
+  const Series s = read_series(out / "series.csv");
+  EXPECT_EQ(s.incomplete_rows, 0);
+  // rows at k * interval, and the end time once more when it is not one of them
+  const long on_grid = instants(interval, end);
+  const bool end_on_grid = std::abs(end / interval - std::round(end / interval)) < 1e-9;
+  ASSERT_EQ(static_cast<long>(s.rows.size()), on_grid + (end_on_grid ? 0 : 1));
+  for (long k = 0; k < on_grid; ++k) EXPECT_NEAR(s.rows[k][0], k * interval, 1e-12 * std::max(1.0, end)) << k;
+  EXPECT_DOUBLE_EQ(s.rows.back()[0], end);
+
+  // frames every end / 100 by default: 101 of them, t = 0 and t = end included
+  if (mode == Mode::kFrames) {
+    EXPECT_EQ(count_files(out / "frames", ".png"), 101);
+    EXPECT_EQ(summary["frames_written"], 101);
+  }
+  if (mode == Mode::kMovie) {
+    EXPECT_EQ(movie_frames(out / "movie.mp4"), 101);
+    EXPECT_EQ(summary["frames_written"], 101);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Shipped, EveryScene,
+                         ::testing::Combine(::testing::ValuesIn(shipped_scenes()),
+                                            ::testing::Values(Mode::kPlain, Mode::kFrames, Mode::kMovie)),
+                         [](const auto& param_info) {
+                           return std::get<0>(param_info.param) + "_" + mode_name(std::get<1>(param_info.param));
+                         });
+
+}  // namespace
+}  // namespace periflex::testing

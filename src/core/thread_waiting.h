@@ -2,7 +2,7 @@
 // barrier spin for a long while before it sleeps; with another process busy on one of the cores
 // the spinning thread takes that core from the thread everybody waits for, and two threads ran
 // six times slower than one. Passive waiting (sleep at once) costs little on a quiet machine and
-// keeps a shared one fair (figures in docs/performance.md).
+// keeps a shared one fair (figures in docs/running.md).
 //
 // libgomp reads its settings once, when it is loaded, before main runs, and the C library resets
 // the environment after any earlier hook could change it. So a program that wants passive

@@ -1,5 +1,8 @@
 #include "cli/frame_sink.h"
 
+#include <cmath>
+#include <cstdio>
+
 #include "core/error.h"
 
 #ifdef PERIFLEX_WITH_HEADLESS
@@ -29,6 +32,30 @@ ColorField parse_field(const std::string& name) {
   if (name == "strain") return ColorField::kStrain;
   throw InputError({"command line", 0, 0, "--field"},
                    "unknown field '" + name + "'; expected damage, displacement, speed or strain");
+}
+
+// --camera: grow (the default), fit, or a fixed view "X,Y,HEIGHT" in scene units.
+void parse_camera(const std::string& text, RecorderOptions& recorder) {
+  using Mode = RecorderOptions::CameraMode;
+  if (text.empty() || text == "grow") {
+    recorder.camera_mode = Mode::kGrow;
+    return;
+  }
+  if (text == "fit") {
+    recorder.camera_mode = Mode::kFit;
+    return;
+  }
+  double x = 0, y = 0, h = 0;
+  char tail = 0;
+  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &x, &y, &h, &tail) != 3 || !std::isfinite(x) ||
+      !std::isfinite(y) || !std::isfinite(h) || !(h > 0.0)) {
+    throw InputError({"command line", 0, 0, "--camera"},
+                     "expected grow, fit, or X,Y,HEIGHT (the view's centre and height in metres, height > 0), "
+                     "not '" + text + "'");
+  }
+  recorder.camera_mode = Mode::kFixed;
+  recorder.camera.center = Vec2(x, y);
+  recorder.camera.view_height = h;
 }
 
 // The run's frames go through the off-screen recording pipeline (headless/recorder.h).
@@ -70,6 +97,7 @@ std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std:
   recorder.fps = options.fps;
   recorder.screenshot_path = options.screenshot_path;
   recorder.settings.field = parse_field(options.field);
+  parse_camera(options.camera, recorder);
   if (!options.colormap.empty()) recorder.settings.colormap = options.colormap;
   if (!options.movie_path.empty()) check_movie_output(options.movie_path, "--movie");
 

@@ -51,6 +51,9 @@ void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_option("--screenshot", o.screenshot_path, "PNG file for --snapshot-at");
   command->add_option("--colormap", o.colormap, "Colour map (turbo, viridis, grey)");
   command->add_option("--field", o.field, "Particle colour: damage, displacement, speed, strain");
+  command->add_option("--camera", o.camera,
+                      "View of the frames: grow (fit the first frame, widen when the scene leaves it; "
+                      "default), fit (fit the first frame and keep it), or X,Y,HEIGHT (fixed, metres)");
 }
 
 int run_main(int argc, char** argv) {

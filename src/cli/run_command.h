@@ -33,6 +33,7 @@ struct RunOptions {
   std::string screenshot_path;          // ... written here
   std::string colormap;                 // empty: default
   std::string field;                    // damage | displacement | speed | strain
+  std::string camera;                   // grow (default) | fit | "X,Y,HEIGHT"
 };
 
 // Returns the process exit code (0 ok, 2 bad input, 3 numerical failure, 1 other).

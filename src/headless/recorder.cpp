@@ -114,16 +114,24 @@ void Recorder::Impl::draw_loop() {
       }
       const Job& job = jobs[j];
 
-      // fit once; widen the view (never narrow it) when particles fly out of it
+      // the view: set by the user, or fitted once; when growing, widened (never narrowed) when
+      // what is drawn leaves it
       const auto draw_start = Clock::now();
-      if (!have_camera) camera = fit_camera(job.snapshot, options.width, options.height), have_camera = true;
-      const Bounds now = snapshot_bounds(job.snapshot);
-      const double aspect = double(options.width) / options.height;
-      const Vec2 half(0.5 * camera.view_height * aspect, 0.5 * camera.view_height);
-      Bounds view;
-      view.add(camera.center - half);
-      view.add(camera.center + half);
-      if (!now.empty() && !view.contains(now)) camera.fit(now.lo, now.hi, aspect);
+      using Mode = RecorderOptions::CameraMode;
+      if (!have_camera) {
+        camera = options.camera_mode == Mode::kFixed ? options.camera
+                                                     : fit_camera(job.snapshot, options.width, options.height);
+        have_camera = true;
+      }
+      if (options.camera_mode == Mode::kGrow) {
+        const Bounds now = snapshot_bounds(job.snapshot);
+        const double aspect = double(options.width) / options.height;
+        const Vec2 half(0.5 * camera.view_height * aspect, 0.5 * camera.view_height);
+        Bounds view;
+        view.add(camera.center - half);
+        view.add(camera.center + half);
+        if (!now.empty() && !view.contains(now)) camera.fit(now.lo, now.hi, aspect);
+      }
 
       // a free frame to draw into
       int f = 0;

@@ -30,6 +30,12 @@ struct RecorderOptions {
   RenderSettings settings;         // field, colour map, what is shown
   std::string resource_root;       // shaders and colour maps; empty: find_resource_root()
   std::string ffmpeg;              // ffmpeg executable; empty: the one on PATH
+  // How the view moves during the recording: kGrow fits the first frame and widens (never
+  // narrows) when the scene leaves the view; kFit fits the first frame and stays; kFixed uses
+  // `camera` throughout.
+  enum class CameraMode { kGrow, kFit, kFixed };
+  CameraMode camera_mode = CameraMode::kGrow;
+  Camera camera;                   // for kFixed
 };
 
 // Where the time went. Each stage runs in its own thread, so the busy times overlap and may add

@@ -118,6 +118,21 @@ TEST(RunCommand, MovieWithoutRenderFlagIsRecorded) {
   EXPECT_EQ(movie_frames(movie), 11);  // t = 0, 0.5, ..., 5
 }
 
+// --camera: a fixed view is accepted, nonsense is refused naming the flag.
+TEST(RunCommand, CameraOptionIsCheckedAndUsed) {
+  const auto out = fresh_directory("camera");
+  auto r = run_child({"run", scene("pendulum.toml"), "--frames", (out / "f").string(), "--frame-every", "1",
+                      "--size", "160x96", "--camera", "0,-0.5,3", "--out", out.string(), "--quiet"},
+                     kLimit);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_EQ(count_files(out / "f", ".png"), 6);
+  r = run_child({"run", scene("pendulum.toml"), "--frames", (out / "g").string(), "--camera", "0,0,-1", "--out",
+                 out.string(), "--quiet"},
+                kLimit);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--camera"), std::string::npos) << r.output;
+}
+
 // A screenshot time after the end used to print "screenshot in ..." and write nothing.
 TEST(RunCommand, ScreenshotAfterTheEndIsRefused) {
   const auto out = fresh_directory("late_shot");

@@ -163,6 +163,37 @@ TEST(Recorder, CameraWidensWhenParticlesLeaveTheView) {
   EXPECT_GT(white, kWidth * kHeight / 10);
 }
 
+// White pixels of frame i of a recording of the plate that moves far to the right after frame 0.
+long white_after_moving(const std::string& name, RecorderOptions options) {
+  const fs::path dir = fresh_directory(name);
+  options.frames_dir = (dir / "frames").string();
+  Recorder recorder(options);
+  recorder.submit(plate(1.0));
+  recorder.submit(plate(1.0, 5.0));
+  recorder.finish();
+  const RgbaImage moved = read_png((dir / "frames" / frame_name(1)).string());
+  long white = 0;
+  for (int y = 0; y < moved.height; ++y)
+    for (int x = 0; x < moved.width; ++x) white += moved.at(x, y)[0] > 200;
+  return white;
+}
+
+// --camera fit: the view of the first frame is kept, so the moved plate is out of the picture.
+TEST(Recorder, FittedCameraStaysWhereTheFirstFrameWas) {
+  RecorderOptions options = small_options();
+  options.camera_mode = RecorderOptions::CameraMode::kFit;
+  EXPECT_EQ(white_after_moving("camera_fit", options), 0);
+}
+
+// --camera X,Y,HEIGHT: a view set by the user, here centred on where the plate moves to.
+TEST(Recorder, FixedCameraShowsTheViewTheUserSet) {
+  RecorderOptions options = small_options();
+  options.camera_mode = RecorderOptions::CameraMode::kFixed;
+  options.camera.center = Vec2(5.5, 0.5);
+  options.camera.view_height = 3.0;
+  EXPECT_GT(white_after_moving("camera_fixed", options), kWidth * kHeight / 20);
+}
+
 // The frames folder replaced by a file once the recorder has started: the file thread cannot write.
 std::unique_ptr<Recorder> recorder_with_broken_folder(const fs::path& dir) {
   RecorderOptions options = small_options();

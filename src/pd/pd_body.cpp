@@ -26,11 +26,17 @@ struct AppliedLoad {
   std::optional<TimeFunction> fx, fy;
 };
 
-// True when segment [a, b] properly crosses segment [c, d] (touching does not count).
-bool segments_cross(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d) {
-  const double o1 = cross(b - a, c - a), o2 = cross(b - a, d - a);
-  const double o3 = cross(d - c, a - c), o4 = cross(d - c, b - c);
-  return o1 * o2 < 0.0 && o3 * o4 < 0.0;
+// True when the bond [a, b] crosses the notch [c, d]. The notch is a closed segment: a bond that
+// passes exactly through one of its end points is cut, as it would be by a notch reaching a
+// hair further. The bond's own ends must lie strictly on either side of the notch's line: a bond
+// from a particle sitting on the notch line is not cut (it only touches). Within `tolerance`
+// (an area: a billionth of a grid cell) a signed area counts as zero.
+bool notch_cuts_bond(const Vec2& a, const Vec2& b, const Vec2& c, const Vec2& d, double tolerance) {
+  const double o3 = cross(d - c, a - c), o4 = cross(d - c, b - c);  // bond ends against the notch line
+  const bool ends_apart = (o3 > tolerance && o4 < -tolerance) || (o3 < -tolerance && o4 > tolerance);
+  if (!ends_apart) return false;
+  const double o1 = cross(b - a, c - a), o2 = cross(b - a, d - a);  // notch ends against the bond line
+  return std::min(o1, o2) <= tolerance && std::max(o1, o2) >= -tolerance;
 }
 
 SourceLocation with_key(SourceLocation where, const std::string& key) {
@@ -104,6 +110,7 @@ struct PdBody::Impl {
     k0.reserve(nl.col.size());
     nx2.reserve(nl.col.size());
     initial_weight.assign(count, 0.0);
+    std::vector<double> notch_weight(count, 0.0);
     for (int i = 0; i < count; ++i) {
       for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
         const int32_t j = nl.col[b];
@@ -115,18 +122,27 @@ struct PdBody::Impl {
         if (beta <= 0.0 || w <= 0.0) continue;
         const Vec2 pi(grid.x[i], grid.y[i]), pj(grid.x[j], grid.y[j]);
         bool cut = false;
-        for (const NotchDef& notch : def.notches) cut = cut || segments_cross(pi, pj, notch.p1, notch.p2);
-        if (cut) continue;
+        for (const NotchDef& notch : def.notches) cut = cut || notch_cuts_bond(pi, pj, notch.p1, notch.p2, 1e-9 * dx * dx);
+        if (cut) {
+          notch_weight[i] += beta;  // counted as broken when the scene asks for it
+          continue;
+        }
         bonds.neighbor.push_back(j);
         bonds.length_class.push_back(static_cast<uint8_t>(r2));
         k0.push_back(c * w * beta * v * v);
         nx2.push_back(double(di) * di / r2);
-        initial_weight[i] += beta;
         // the factor depends on the offset's length only, so one entry per length class
         if (class_weight.size() <= static_cast<size_t>(r2)) class_weight.resize(static_cast<size_t>(r2) + 1, 0.0);
         class_weight[static_cast<size_t>(r2)] = beta;
       }
       bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
+    }
+    // the damage pass weighs bonds by their length class: the initial weights are summed from
+    // the same table, so a particle with every bond intact has damage exactly 0
+    for (int i = 0; i < count; ++i) {
+      double sum = 0.0;
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) sum += class_weight[bonds.length_class[b]];
+      initial_weight[i] = sum + (def.damage == FlexBodyDef::Damage::kIncludeNotch ? notch_weight[i] : 0.0);
     }
     bonds.neighbor.shrink_to_fit();
     bonds.length_class.shrink_to_fit();

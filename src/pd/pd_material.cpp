@@ -36,18 +36,35 @@ double uniaxial_stress_energy_density(double c, double t, double delta, double e
   return kPi * c * t * delta * delta * delta * eps * eps / 18.0;
 }
 
+namespace {
+
+// Area of the disc of radius m about the origin inside the rectangle [0, x] x [0, y], x, y >= 0:
+// the integral over u in [0, min(x, m)] of min(y, sqrt(m^2 - u^2)), in closed form with
+// g(u) = integral_0^u sqrt(m^2 - t^2) dt = (u sqrt(m^2 - u^2) + m^2 asin(u / m)) / 2.
+double quadrant_area(double x, double y, double m) {
+  if (x <= 0.0 || y <= 0.0) return 0.0;
+  if (x * x + y * y <= m * m) return x * y;
+  const auto g = [m](double u) { return 0.5 * (u * std::sqrt(std::max(0.0, m * m - u * u)) + m * m * std::asin(u / m)); };
+  const double xe = std::min(x, m);
+  // below u = sqrt(m^2 - y^2) the rectangle's top edge is inside the disc
+  const double u_top = y < m ? std::sqrt(m * m - y * y) : 0.0;
+  return y * u_top + g(xe) - g(u_top);
+}
+
+// The same for any corner (x, y): signed by quadrant, so that rectangles follow by inclusion
+// and exclusion of their four corners.
+double corner_area(double x, double y, double m) {
+  const double sign = (x < 0.0) != (y < 0.0) ? -1.0 : 1.0;
+  return sign * quadrant_area(std::abs(x), std::abs(y), m);
+}
+
+}  // namespace
+
 double cell_fraction_in_disc(int a, int b, double m) {
-  // midpoint rule across the cell in x; in y the chord of the disc is cut exactly
-  constexpr int kSamples = 512;
-  double area = 0.0;
-  for (int k = 0; k < kSamples; ++k) {
-    const double x = a - 0.5 + (k + 0.5) / kSamples;
-    if (std::abs(x) >= m) continue;
-    const double half_chord = std::sqrt(m * m - x * x);
-    const double lo = std::max(b - 0.5, -half_chord), hi = std::min(b + 0.5, half_chord);
-    if (hi > lo) area += (hi - lo) / kSamples;
-  }
-  return area;
+  // the exact area of the unit cell [a - 1/2, a + 1/2] x [b - 1/2, b + 1/2] inside the disc
+  const double x0 = a - 0.5, x1 = a + 0.5, y0 = b - 0.5, y1 = b + 0.5;
+  const double area = corner_area(x1, y1, m) - corner_area(x0, y1, m) - corner_area(x1, y0, m) + corner_area(x0, y0, m);
+  return std::clamp(area, 0.0, 1.0);
 }
 
 double implied_poisson_ratio(bool plane_strain) { return plane_strain ? 0.25 : 1.0 / 3.0; }

@@ -447,6 +447,8 @@ class SceneBuilder {
     // pre-cracks and unbreakable regions
     if (const toml::array* notches = in.optional_array("notches"))
       for (size_t k = 0; k < notches->size(); ++k) flex.notches.push_back(read_notch(*notches->get(k), in.key_path("notches") + "." + std::to_string(k)));
+    const std::string damage = in.choice("damage", {"exclude_notch", "include_notch"}, "exclude_notch");
+    flex.damage = damage == "include_notch" ? FlexBodyDef::Damage::kIncludeNotch : FlexBodyDef::Damage::kExcludeNotch;
     if (const toml::node* no_fail = in.node("no_fail"))
       flex.no_fail_regions = read_shape_list(context_, *no_fail, in.key_path("no_fail"));
 

@@ -176,6 +176,10 @@ struct FlexBodyDef {
   bool surface_correction = true;
   bool fracture = true;           // false: bonds never break; stretch is never checked
   std::vector<NotchDef> notches;
+  // Damage = 1 - intact / initial bond weight. kExcludeNotch: bonds a notch cut at set-up are
+  // not in the initial weight (particles on the notch start undamaged); kIncludeNotch: they
+  // count as broken (particles on the notch show damage from t = 0, as in most peer codes).
+  enum class Damage { kExcludeNotch, kIncludeNotch } damage = Damage::kExcludeNotch;
   std::vector<ShapeDef> no_fail_regions;
   double bond_damping = 0.0;      // viscous, along the bond, proportional to stretch rate [Pa s]
   double global_damping = 0.0;    // mass-proportional, force = -alpha m v [1/s]

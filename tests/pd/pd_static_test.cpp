@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -237,6 +238,71 @@ TEST(PdNotch, RemovesExactlyTheBondsCrossingTheNotch) {
   }
   EXPECT_GT(expected_removed, 0);
   EXPECT_EQ(intact->bond_count() - cut->bond_count(), expected_removed);
+}
+
+// A notch is a closed segment: one that ends exactly where bonds cross its line (here at x = 0,
+// between the particle columns at x = -dx/2 and +dx/2) cuts them, as one reaching a tenth of a
+// cell further does; one stopping a tenth of a cell short does not. Before, an exact
+// floating-point zero left the bonds through the end point intact.
+TEST(PdNotch, ANotchEndingOnABondCutsIt) {
+  const double dx = 1e-3;
+  const FlexBodyDef def = glass_plate(0.02, 0.012, dx);
+  auto bonds_with_tip_at = [&](double tip) {
+    FlexBodyDef notched = def;
+    NotchDef notch;
+    notch.p1 = Vec2(-0.011, 0.0);
+    notch.p2 = Vec2(tip, 0.0);
+    notched.notches.push_back(notch);
+    return PdBody::build(notched, 0)->bond_count();
+  };
+  // the bonds of the un-notched plate that cross y = 0 exactly at x = 0
+  auto intact = PdBody::build(def, 0);
+  std::vector<std::pair<int, int>> pairs;
+  intact->bond_pairs(pairs, 1u << 30);
+  const std::vector<double>& x = intact->reference_positions();
+  long through_end = 0;
+  for (const auto& [i, j] : pairs) {
+    const double yi = x[2 * i + 1], yj = x[2 * j + 1];
+    if (yi * yj >= 0.0) continue;
+    const double xc = x[2 * i] + (x[2 * j] - x[2 * i]) * (0.0 - yi) / (yj - yi);
+    through_end += std::abs(xc) < 1e-9 * dx;
+  }
+  ASSERT_GT(through_end, 0);
+  const long on_end = bonds_with_tip_at(0.0);
+  EXPECT_EQ(on_end, bonds_with_tip_at(0.1 * dx));
+  EXPECT_EQ(bonds_with_tip_at(-0.1 * dx) - on_end, through_end);
+}
+
+// damage = "include_notch": bonds cut by a notch count as broken, so the particles along it start
+// damaged (half their weight gone at most: the notch cuts one side); "exclude_notch" (the
+// default) leaves them out of the initial weight, and nothing starts damaged.
+TEST(PdNotch, DamageCountsNotchBondsOnlyWhenAsked) {
+  const double dx = 1e-3;
+  FlexBodyDef def = glass_plate(0.02, 0.012, dx);
+  NotchDef notch;
+  notch.p1 = Vec2(-0.011, 0.0);
+  notch.p2 = Vec2(0.0032, 0.0);
+  def.notches.push_back(notch);
+  std::vector<float> damage;
+  PdBody::build(def, 0)->damage(damage);
+  EXPECT_EQ(*std::max_element(damage.begin(), damage.end()), 0.0f);
+
+  def.damage = FlexBodyDef::Damage::kIncludeNotch;
+  auto body = PdBody::build(def, 0);
+  body->damage(damage);
+  const std::vector<double>& x = body->reference_positions();
+  for (size_t i = 0; i < damage.size(); ++i) {
+    const double px = x[2 * i], py = x[2 * i + 1];
+    // beside the notch, within the horizon: bonds across it are gone; elsewhere nothing is
+    const bool beside = std::abs(py) < 3 * dx && px < 0.0032 + 3 * dx;
+    if (std::abs(py) < dx && px < 0.0) {
+      EXPECT_GT(damage[i], 0.2f) << px << ", " << py;
+      EXPECT_LT(damage[i], 0.5f) << px << ", " << py;
+    }
+    if (!beside) {
+      EXPECT_EQ(damage[i], 0.0f) << px << ", " << py;
+    }
+  }
 }
 
 TEST(PdDeterminism, ForcesAreBitIdenticalAcrossThreadCounts) {

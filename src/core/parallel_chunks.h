@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 namespace periflex {
 
@@ -25,6 +26,21 @@ void parallel_chunks(int64_t n, Fn&& fn) {
   }
 #pragma omp parallel for schedule(dynamic, 1)
   for (int64_t c = 0; c < chunks; ++c) fn(c, c * kChunkEntries, std::min(n, (c + 1) * kChunkEntries));
+}
+
+// Sum of fn(begin, end) over fixed ranges of `per_chunk` items of [0, n), added in range order:
+// the same bits on any number of threads (an OpenMP reduction adds in an order that depends on
+// the team). Ranges go to the threads as they become free.
+template <typename Fn>
+double ordered_sum(int64_t n, int64_t per_chunk, Fn&& fn) {
+  const int64_t chunks = (n + per_chunk - 1) / per_chunk;
+  if (chunks <= 1) return n > 0 ? fn(int64_t{0}, n) : 0.0;
+  std::vector<double> partial(static_cast<size_t>(chunks), 0.0);
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int64_t c = 0; c < chunks; ++c) partial[c] = fn(c * per_chunk, std::min(n, (c + 1) * per_chunk));
+  double sum = 0.0;
+  for (double p : partial) sum += p;
+  return sum;
 }
 
 }  // namespace periflex

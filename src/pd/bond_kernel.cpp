@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/parallel_chunks.h"
 #include "pd/bond_rows.h"
 
 // The portable row loops live here; bond_rows_avx2.cpp and bond_rows_avx512.cpp hold the vector
@@ -188,39 +189,40 @@ void add_damped_bond_forces(const BondStore& bonds, const double* pos, const dou
 }
 
 double bond_strain_energy(const BondStore& bonds, const double* pos) {
-  const int n = bonds.particle_count();
-  double sum = 0.0;
-  // each pair is visited twice: a quarter of k |xi| s^2 per visit
-#pragma omp parallel for schedule(static) reduction(+ : sum) if (n >= kParallelMin)
-  for (int i = 0; i < n; ++i) {
-    double local = 0.0;
-    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      const double s = stretch(bonds, pos, i, b);
-      local += double(bonds.stiffness[b]) * s * s / bonds.inv_length(b);
+  // each pair is visited twice: a quarter of k |xi| s^2 per visit; rows summed in fixed ranges
+  // and the ranges in order, so the energy has the same bits on any thread count
+  return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
+    double sum = 0.0;
+    for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
+      double local = 0.0;
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+        const double s = stretch(bonds, pos, i, b);
+        local += double(bonds.stiffness[b]) * s * s / bonds.inv_length(b);
+      }
+      sum += 0.25 * local;
     }
-    sum += 0.25 * local;
-  }
-  return sum;
+    return sum;
+  });
 }
 
 double bond_damping_power(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e) {
-  const int n = bonds.particle_count();
-  double sum = 0.0;
-  // k eta/E |xi| (ds/dt)^2 per pair, half per visit
-#pragma omp parallel for schedule(static) reduction(+ : sum) if (n >= kParallelMin)
-  for (int i = 0; i < n; ++i) {
-    double local = 0.0;
-    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      const int32_t j = bonds.neighbor[b];
-      const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
-      const double dvx = vel[2 * j] - vel[2 * i], dvy = vel[2 * j + 1] - vel[2 * i + 1];
-      const double l0 = bonds.inv_length(b);
-      const double rate = (dx * dvx + dy * dvy) / std::sqrt(dx * dx + dy * dy) * l0;
-      local += double(bonds.stiffness[b]) * eta_over_e * rate * rate / l0;
+  // k eta/E |xi| (ds/dt)^2 per pair, half per visit; a fixed-order sum as above
+  return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
+    double sum = 0.0;
+    for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
+      double local = 0.0;
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+        const int32_t j = bonds.neighbor[b];
+        const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
+        const double dvx = vel[2 * j] - vel[2 * i], dvy = vel[2 * j + 1] - vel[2 * i + 1];
+        const double l0 = bonds.inv_length(b);
+        const double rate = (dx * dvx + dy * dvy) / std::sqrt(dx * dx + dy * dy) * l0;
+        local += double(bonds.stiffness[b]) * eta_over_e * rate * rate / l0;
+      }
+      sum += 0.5 * local;
     }
-    sum += 0.5 * local;
-  }
-  return sum;
+    return sum;
+  });
 }
 
 long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const uint8_t* no_fail,

@@ -229,12 +229,9 @@ void GuiApp::execute(const ScriptAction& a) {
     pending_screenshot_ = a.args[0];
     screenshot_with_panels_ = true;
   } else if (verb == "record") {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
-    start_recording(a.args[0], std::atof(a.args[1].c_str()), record_fps_, w, h);
-    if (!writer_) script_failure("recording did not start: " + record_message_);
+    pending_record_start_ = RecordRequest{a.args[0], std::atof(a.args[1].c_str()), record_fps_, "script"};
   } else if (verb == "stop_record") {
-    stop_recording();
+    pending_record_stop_ = true;
   } else if (verb == "grab") {
     // after the requests sent so far (a reset, say) have been applied
     pending_expect_ = a;
@@ -326,6 +323,10 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       log_.add("fit view (key)");
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) pending_screenshot_ = default_screenshot_name();
+    if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Q, false)) {
+      log_.add("quit (key)");
+      quit_ = true;
+    }
   }
 
   // window coordinates to framebuffer pixels (they differ on high-density screens)
@@ -407,6 +408,59 @@ void GuiApp::draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, 
   for (int i = first; i < list->VtxBuffer.Size; ++i) list->VtxBuffer[i].pos.x += shift;
 }
 
+void GuiApp::dump_state(int fb_width, int fb_height) {
+  // what input-driven tests compare against (see widget_dump.h)
+  if (!dump_.enabled()) return;
+  dump_.state("running", status_.running ? "1" : "0");
+  dump_.state("step", static_cast<double>(status_.step));
+  dump_.state("time", status_.time);
+  dump_.state("bond_damping", status_.settings.bond_damping);
+  dump_.state("recording", writer_ ? "1" : "0");
+  dump_.state("frames_written", writer_ ? static_cast<double>(writer_->frames_written()) : 0.0);
+  int win_w = 1, win_h = 1;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  dump_.state("window", std::to_string(win_w) + " " + std::to_string(win_h));
+  const double sx = double(fb_width) / std::max(1, win_w), sy = double(fb_height) / std::max(1, win_h);
+  // world to window coordinates, so a test can aim at a world point:
+  // window x = ax X + bx, window y = ay Y + by
+  const Vec2 origin = camera_.to_pixels(Vec2(0.0, 0.0), fb_width, fb_height);
+  const Vec2 unit = camera_.to_pixels(Vec2(1.0, 1.0), fb_width, fb_height);
+  char mapping[160];
+  std::snprintf(mapping, sizeof mapping, "%.9g %.9g %.9g %.9g", (unit.x() - origin.x()) / sx, origin.x() / sx,
+                (unit.y() - origin.y()) / sy, origin.y() / sy);
+  dump_.state("world_to_window", std::string(mapping));
+  const Snapshot& snap = worker_.snapshot();
+  const auto particle = [&snap](int i) {
+    char text[80];
+    std::snprintf(text, sizeof text, "%d %.9g %.9g", i, snap.px[i], snap.py[i]);
+    return std::string(text);
+  };
+  if (grabbing_ && grab_spring_.particle >= 0 && grab_spring_.particle < static_cast<int>(snap.px.size())) {
+    dump_.state("grabbed", particle(grab_spring_.particle));
+  }
+  // the particle the left button would grab now
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const Vec2 world = camera_.to_world(mouse.x * sx, mouse.y * sy, fb_width, fb_height);
+  const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
+  if (std::optional<MouseSpring> s = pick(snap, world, tolerance); s && s->particle >= 0) {
+    dump_.state("pointed", particle(s->particle));
+  }
+}
+
+void GuiApp::run_pending_actions(int fb_width, int fb_height) {
+  // a stop asked in the same frame as a start applies to the recording running before it
+  if (pending_record_stop_) {
+    pending_record_stop_ = false;
+    stop_recording();
+  }
+  if (pending_record_start_) {
+    const RecordRequest r = *pending_record_start_;
+    pending_record_start_.reset();
+    start_recording(r.path, r.interval, r.fps, fb_width, fb_height);
+    if (!writer_ && r.origin == "script") script_failure("recording did not start: " + record_message_);
+  }
+}
+
 int GuiApp::run() {
   for (;;) {
     glfwPollEvents();
@@ -438,6 +492,7 @@ int GuiApp::run() {
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
+      dump_.begin_frame();
       handle_input(fb_width, fb_height);
 
       // camera: fit when asked (and once there is something to fit), follow a body
@@ -468,11 +523,14 @@ int GuiApp::run() {
       if (render_.show_overlay && snap.geometry) {
         draw_overlay_beside(snap, panels ? kPanelWidth : 0, fb_width, fb_height);
       }
+      dump_state(fb_width, fb_height);
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      dump_.end_frame();
     }
     if (!screenshot.empty()) capture_screenshot(screenshot, fb_width, fb_height);
     glfwSwapBuffers(window_);
+    run_pending_actions(fb_width, fb_height);
 
     if (advance) ++frame_;
     if (quit_ || (options_.frames > 0 && frame_ >= options_.frames)) break;

@@ -14,6 +14,7 @@
 #include "app/plot_history.h"
 #include "app/sim_worker.h"
 #include "app/view_fit.h"
+#include "app/widget_dump.h"
 #include "render/camera.h"
 #include "render/frame_writer.h"
 #include "render/renderer.h"
@@ -46,6 +47,7 @@ class GuiApp {
   void capture_screenshot(const std::string& path, int fb_width, int fb_height);
   void send(SimCommand command);
   void script_failure(const std::string& what);
+  void dump_state(int fb_width, int fb_height);
 
   // panels (gui_panels.cpp)
   void panel_simulation();
@@ -53,13 +55,16 @@ class GuiApp {
   void panel_view();
   void panel_view_controls();
   void panel_plots();
-  void panel_export(int fb_width, int fb_height);
+  void panel_export();
   void panel_log();
   void numerical_error_modal();
 
   // recording (gui_record.cpp)
   void start_recording(const std::string& path, double interval, double fps, int fb_width, int fb_height);
   void stop_recording();
+  // carries out what panels, keys and the script asked for during the frame, outside the
+  // locked ImGui frame (the recorder's own ImGui context takes the same lock)
+  void run_pending_actions(int fb_width, int fb_height);
   void pump_recording();
   void write_recorded_frame(const Snapshot& frame, FrameWriter& writer);
 
@@ -93,6 +98,8 @@ class GuiApp {
   long shown_error_step_ = -2;      // the numerical failure last shown in the modal
   long log_shown_ = 0;              // log lines the panel has scrolled to
 
+  WidgetDump dump_;                 // control positions and state for input-driven tests
+
   // script and frame count
   long frame_ = 0;
   size_t next_action_ = 0;
@@ -108,7 +115,16 @@ class GuiApp {
   bool grab_by_mouse_ = false;      // false: a script holds the grab
   MouseSpring grab_spring_;
 
-  // capture and recording
+  // capture and recording; panels and keys only record requests (pending_*), carried out by
+  // run_pending_actions between frames
+  struct RecordRequest {
+    std::string path;
+    double interval = 0.0;
+    double fps = 30.0;
+    std::string origin;             // "ui" or "script", for the log and script failures
+  };
+  std::optional<RecordRequest> pending_record_start_;
+  bool pending_record_stop_ = false;
   std::string pending_screenshot_;
   bool screenshot_with_panels_ = false;
   char screenshot_path_[512] = "";

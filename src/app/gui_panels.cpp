@@ -60,7 +60,9 @@ void GuiApp::draw_panels(int fb_width, int fb_height) {
   if (ImGui::CollapsingHeader("Live parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters();
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) panel_view();
   if (ImGui::CollapsingHeader("Plots")) panel_plots();
-  if (ImGui::CollapsingHeader("Export")) panel_export(fb_width, fb_height);
+  const bool export_open = ImGui::CollapsingHeader("Export");
+  dump_.note_item("export_header");
+  if (export_open) panel_export();
   if (ImGui::CollapsingHeader("Log", ImGuiTreeNodeFlags_DefaultOpen)) panel_log();
   ImGui::PopItemWidth();
   ImGui::End();
@@ -74,10 +76,13 @@ void GuiApp::panel_simulation() {
   if (ImGui::Button(status_.running ? "Pause" : "Run", ImVec2(60, 0))) {
     send(SimCommand::make(Kind::kToggleRun));
   }
+  dump_.note_item("run_pause");
   ImGui::SameLine();
   if (ImGui::Button("Step")) send(SimCommand::make(Kind::kStep));
+  dump_.note_item("step");
   ImGui::SameLine();
   if (ImGui::Button("Reset")) send(SimCommand::make(Kind::kReset));
+  dump_.note_item("reset");
   ImGui::SameLine();
   if (ImGui::Button("Reload")) send(SimCommand::make(Kind::kReload));
 
@@ -162,6 +167,7 @@ void GuiApp::panel_parameters() {
 
   if (particles) {
     changed |= input_number("bond damping [Pa s]", edit.bond_damping);
+    dump_.note_item("bond_damping");
     changed |= input_number("global damping [1/s]", edit.global_damping);
     changed |= ImGui::Checkbox("fracture", &edit.fracture);
   }
@@ -282,7 +288,7 @@ void GuiApp::panel_plots() {
   }
 }
 
-void GuiApp::panel_export(int fb_width, int fb_height) {
+void GuiApp::panel_export() {
   ImGui::InputText("##shot", screenshot_path_, sizeof screenshot_path_);
   ImGui::SameLine();
   if (ImGui::Button("Screenshot (S)")) {
@@ -292,16 +298,21 @@ void GuiApp::panel_export(int fb_width, int fb_height) {
   ImGui::Separator();
   ImGui::TextWrapped("Record: a folder for a PNG sequence, or a .mp4 file (needs ffmpeg)");
   ImGui::InputText("##record", record_path_, sizeof record_path_);
+  dump_.note_item("record_path");
   if (record_interval_ <= 0.0) record_interval_ = status_.end_time > 0.0 ? status_.end_time / 200.0 : 0.01;
   input_number("every [sim s]", record_interval_);
+  dump_.note_item("record_interval");
   ImGui::InputFloat("movie fps", &record_fps_, 0.0f, 0.0f, "%.0f");
   if (!writer_) {
+    // a request: recording starts between frames, outside this ImGui frame
     if (ImGui::Button("Start recording")) {
-      start_recording(record_path_, record_interval_, record_fps_, fb_width, fb_height);
+      pending_record_start_ = RecordRequest{record_path_, record_interval_, record_fps_, "ui"};
     }
+    dump_.note_item("start_recording");
   } else {
     ImGui::Text("%ld frames written", writer_->frames_written());
-    if (ImGui::Button("Stop recording")) stop_recording();
+    if (ImGui::Button("Stop recording")) pending_record_stop_ = true;
+    dump_.note_item("stop_recording");
   }
   if (!record_message_.empty()) ImGui::TextWrapped("%s", record_message_.c_str());
 }

@@ -408,6 +408,37 @@ void GuiApp::draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, 
   for (int i = first; i < list->VtxBuffer.Size; ++i) list->VtxBuffer[i].pos.x += shift;
 }
 
+void GuiApp::draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height) {
+  // what the mouse holds: a line from the held point to the pointer, the force at the pointer
+  if (!grabbing_ || status_.mouse_stiffness <= 0.0) return;
+  Vec2 held;
+  if (grab_spring_.particle >= 0 && grab_spring_.particle < static_cast<int>(snap.px.size())) {
+    held = Vec2(snap.px[grab_spring_.particle], snap.py[grab_spring_.particle]);
+  } else if (grab_spring_.body >= 0 && grab_spring_.body + 1 < static_cast<int>(snap.bodies.size())) {
+    const Snapshot::Pose& pose = snap.bodies[grab_spring_.body + 1];
+    held = Vec2(pose.x, pose.y) + rotation(pose.angle) * grab_spring_.local_point;
+  } else {
+    return;
+  }
+  const float scale = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
+  const auto window_point = [&](const Vec2& world) {
+    const Vec2 p = camera_.to_pixels(world, fb_width, fb_height);
+    return ImVec2(static_cast<float>(p.x()) / scale, static_cast<float>(p.y()) / scale);
+  };
+  const ImVec2 a = window_point(held), b = window_point(grab_spring_.target);
+  ImDrawList* list = ImGui::GetBackgroundDrawList();
+  const ImU32 colour = IM_COL32(90, 220, 255, 255);
+  list->AddLine(a, b, colour, 2.0f);
+  list->AddCircleFilled(a, 4.0f, colour);
+  list->AddCircle(b, 6.0f, colour, 0, 2.0f);
+  // the spring's pull (its damping part left out): stiffness times stretch
+  const double force = status_.mouse_stiffness * (grab_spring_.target - held).norm();
+  char text[48];
+  std::snprintf(text, sizeof text, "%.3g N", force);
+  list->AddText(ImVec2(b.x + 9.0f, b.y - 18.0f), colour, text);
+  dump_.state("spring_force", force);
+}
+
 void GuiApp::dump_state(int fb_width, int fb_height) {
   // what input-driven tests compare against (see widget_dump.h)
   if (!dump_.enabled()) return;
@@ -519,6 +550,7 @@ int GuiApp::run() {
       }
       // screenshots show the picture and its overlay, not the panels
       const bool panels = screenshot.empty() || with_panels;
+      if (panels) draw_mouse_spring(snap, fb_width, fb_height);
       if (panels) draw_panels(fb_width, fb_height);
       if (render_.show_overlay && snap.geometry) {
         draw_overlay_beside(snap, panels ? kPanelWidth : 0, fb_width, fb_height);

@@ -48,6 +48,7 @@ class GuiApp {
   void send(SimCommand command);
   void script_failure(const std::string& what);
   void dump_state(int fb_width, int fb_height);
+  void draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height);
 
   // panels (gui_panels.cpp)
   void panel_simulation();

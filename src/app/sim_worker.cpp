@@ -116,6 +116,7 @@ void SimWorker::publish() {
   s.load_error = load_error_;
   s.commands_applied = applied_;
   s.recording = record_interval_ > 0.0;
+  s.mouse_stiffness = mouse_stiffness_;
   std::lock_guard<std::mutex> lock(status_mutex_);
   status_ = std::move(s);
 }
@@ -127,6 +128,7 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   // live changes carry over; a model already on those settings is left alone
   if (keep_settings && !same_live_settings(kept, fresh->settings())) fresh->apply(kept);
   model_ = std::move(fresh);
+  mouse_stiffness_ = 0.0;  // a new model holds nothing
   ++generation_;
   numerical_error_.reset();
   numerical_message_.clear();
@@ -245,7 +247,7 @@ void SimWorker::apply(SimCommand& c) {
       log_.add("speed " + describe_speed(speed_) + by);
       break;
     case Kind::kMouseSpring:
-      model_->set_mouse_spring(c.spring);
+      mouse_stiffness_ = model_->set_mouse_spring(c.spring);
       // dragging sends a command per frame: log only grabbing and releasing
       if (!c.spring) log_.add("mouse spring released" + by);
       else if (c.count == 1) {

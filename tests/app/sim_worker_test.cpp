@@ -74,7 +74,7 @@ class FakeModel final : public SteppedModel {
     settings_ = s;
     log_.events.push_back("apply " + std::to_string(static_cast<long>(s.bond_damping)));
   }
-  void set_mouse_spring(const std::optional<MouseSpring>&) override {}
+  double set_mouse_spring(const std::optional<MouseSpring>&) override { return 0.0; }
 
  private:
   FakeLog& log_;

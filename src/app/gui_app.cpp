@@ -68,15 +68,14 @@ std::string GuiApp::resolve_scene_path(const std::string& path) const {
 }
 
 std::vector<std::string> GuiApp::list_scenes() const {
-  // every .toml under scenes/, by path relative to it
+  // the runnable scenes: scenes/*.toml (the studies' and stability checks' files in the
+  // folders below are inputs of `periflex study` and `periflex stability`, not scenes to open)
   std::vector<std::string> out;
   const fs::path root = fs::path(resource_root_) / "scenes";
   std::error_code ec;
   if (!fs::is_directory(root, ec)) return out;
-  for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); ++it) {
-    if (it->is_regular_file() && it->path().extension() == ".toml") {
-      out.push_back(fs::relative(it->path(), root).string());
-    }
+  for (auto it = fs::directory_iterator(root, ec); it != fs::directory_iterator(); ++it) {
+    if (it->is_regular_file() && it->path().extension() == ".toml") out.push_back(it->path().filename().string());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -484,6 +483,10 @@ void GuiApp::run_pending_actions(int fb_width, int fb_height) {
     pending_record_stop_ = false;
     stop_recording();
   }
+  if (!pending_picture_.empty()) {
+    write_picture(pending_picture_, fb_width, fb_height);
+    pending_picture_.clear();
+  }
   if (pending_record_start_) {
     const RecordRequest r = *pending_record_start_;
     pending_record_start_.reset();
@@ -509,8 +512,9 @@ int GuiApp::run() {
     // the last frame of a --frames run is the screenshot
     const bool last_frame = options_.frames > 0 && advance && frame_ + 1 >= options_.frames;
     if (last_frame && !options_.screenshot.empty()) pending_screenshot_ = options_.screenshot;
-    const std::string screenshot = pending_screenshot_;
-    const bool with_panels = screenshot_with_panels_;
+    // the whole window (screenshot_ui) is read from it; a picture is drawn off-screen after it
+    const std::string screenshot = screenshot_with_panels_ ? pending_screenshot_ : std::string();
+    if (!screenshot_with_panels_ && !pending_screenshot_.empty()) pending_picture_ = pending_screenshot_;
     pending_screenshot_.clear();
     screenshot_with_panels_ = false;
 
@@ -534,7 +538,8 @@ int GuiApp::run() {
         auto_frame_ = true;
       }
       // until the user moves the view, it grows to keep what moves in sight
-      if (auto_frame_ && follow_ <= 0 && snap.geometry && grow_framing(framing_, snap)) {
+      // (not while recording: a movie keeps the camera it started with)
+      if (auto_frame_ && follow_ <= 0 && !writer_ && snap.geometry && grow_framing(framing_, snap)) {
         camera_ = fit_camera_beside_panels(framing_.shown, fb_width, fb_height, kPanelWidth);
       }
       if (follow_ > 0 && follow_ < static_cast<int>(snap.bodies.size())) {
@@ -548,13 +553,9 @@ int GuiApp::run() {
         log_.add(std::string("drawing failed: ") + e.what() + "; back to the default colour map");
         render_.colormap = RenderSettings{}.colormap;
       }
-      // screenshots show the picture and its overlay, not the panels
-      const bool panels = screenshot.empty() || with_panels;
-      if (panels) draw_mouse_spring(snap, fb_width, fb_height);
-      if (panels) draw_panels(fb_width, fb_height);
-      if (render_.show_overlay && snap.geometry) {
-        draw_overlay_beside(snap, panels ? kPanelWidth : 0, fb_width, fb_height);
-      }
+      draw_mouse_spring(snap, fb_width, fb_height);
+      draw_panels(fb_width, fb_height);
+      if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
       dump_state(fb_width, fb_height);
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

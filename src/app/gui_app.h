@@ -17,6 +17,7 @@
 #include "app/widget_dump.h"
 #include "render/camera.h"
 #include "render/frame_writer.h"
+#include "render/image.h"
 #include "render/renderer.h"
 #include "render/view.h"
 
@@ -68,6 +69,11 @@ class GuiApp {
   void run_pending_actions(int fb_width, int fb_height);
   void pump_recording();
   void write_recorded_frame(const Snapshot& frame, FrameWriter& writer);
+  // pictures without the panels, as recorded frames and screenshots show them
+  RgbaImage draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, FrameOverlay& overlay,
+                         int width, int height);
+  static bool make_target(int width, int height, unsigned& fbo, unsigned& rbo);
+  void write_picture(const std::string& path, int fb_width, int fb_height);
 
   std::string default_screenshot_name() const;
   std::string resolve_scene_path(const std::string& path) const;
@@ -94,6 +100,8 @@ class GuiApp {
   LiveSettings edit_;               // the live-parameter panel's copy
   long edit_generation_ = -1;
   int speed_choice_ = 0;
+  int step_count_ = 100;            // the Simulation panel's "Step N"
+  double step_to_time_ = 0.0;       // its "Step to t"; 0: not set yet
   std::vector<std::string> scenes_;
   int scene_choice_ = -1;
   long shown_error_step_ = -2;      // the numerical failure last shown in the modal
@@ -127,6 +135,7 @@ class GuiApp {
   std::optional<RecordRequest> pending_record_start_;
   bool pending_record_stop_ = false;
   std::string pending_screenshot_;
+  std::string pending_picture_;     // a screenshot without the panels, drawn between frames
   bool screenshot_with_panels_ = false;
   char screenshot_path_[512] = "";
   char record_path_[512] = "frames";
@@ -135,6 +144,7 @@ class GuiApp {
   std::unique_ptr<FrameWriter> writer_;
   std::unique_ptr<FrameOverlay> record_overlay_;   // recorded frames carry the window's overlay
   unsigned fbo_ = 0, color_rbo_ = 0;
+  Camera record_camera_;
   int record_width_ = 0, record_height_ = 0;
   std::string record_message_;
 };

@@ -86,6 +86,30 @@ void GuiApp::panel_simulation() {
   ImGui::SameLine();
   if (ImGui::Button("Reload")) send(SimCommand::make(Kind::kReload));
 
+  // several steps at once, or up to a time: a single step of a fracture scene is 0.4 us
+  ImGui::PushItemWidth(110.0f);
+  ImGui::InputInt("##stepcount", &step_count_, 0, 0);
+  dump_.note_item("step_count");
+  step_count_ = std::clamp(step_count_, 1, 100000000);
+  ImGui::SameLine();
+  if (ImGui::Button("Step N")) {
+    SimCommand c = SimCommand::make(Kind::kStep);
+    c.count = step_count_;
+    send(c);
+  }
+  dump_.note_item("step_n");
+  if (step_to_time_ <= 0.0 && status_.end_time > 0.0) step_to_time_ = status_.end_time / 10.0;
+  ImGui::InputDouble("##steptime", &step_to_time_, 0.0, 0.0, "%.6g");
+  dump_.note_item("step_to_time");
+  ImGui::SameLine();
+  if (ImGui::Button("Step to t")) {
+    SimCommand c = SimCommand::make(Kind::kStepTo);
+    c.number = step_to_time_;
+    send(c);
+  }
+  dump_.note_item("step_to");
+  ImGui::PopItemWidth();
+
   // pace: the nearest offered factor is shown as chosen
   int current = 0;
   for (int i = 0; i < kSpeedCount; ++i) {

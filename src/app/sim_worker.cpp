@@ -1,5 +1,7 @@
 #include "app/sim_worker.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 
@@ -200,6 +202,21 @@ void SimWorker::apply(SimCommand& c) {
       pending_steps_ += c.count > 0 ? c.count : 1;
       log_.add("step x" + std::to_string(c.count > 0 ? c.count : 1) + by);
       break;
+    case Kind::kStepTo: {
+      if (numerical_error_) {
+        log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
+        break;
+      }
+      running_ = false;
+      // whole steps of dt from now, the last one at or after the time asked (a step of dt
+      // that would overshoot it by less than a billionth of dt is not taken)
+      const double dt = model_->settings().dt;
+      const double remaining = c.number - model_->time();
+      const double steps = dt > 0.0 && remaining > 0.0 ? std::ceil(remaining / dt - 1e-9) : 0.0;
+      pending_steps_ = static_cast<int>(std::min(steps, 2e9));
+      log_.add("step to t = " + std::to_string(c.number) + ": " + std::to_string(pending_steps_) + " steps" + by);
+      break;
+    }
     case Kind::kReset:
       try {
         rebuild(scene_, true, ("reset" + by).c_str());

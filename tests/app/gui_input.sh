@@ -174,6 +174,23 @@ case "$case_name" in
     key BackSpace
     wait_until 10 "Backspace to reset to step 0" '(( $(state step) == 0 ))'
     holds "$(state time) == 0" || fail "time after reset is $(state time)"
+    # Step N: 250 steps at once
+    click step_count
+    retype 250
+    key Return
+    click step_n
+    wait_until 20 "Step N to take 250 steps" '(( $(state step) == 250 ))'
+    # Step to t: 0.01013 s is not a whole number of steps of 2.5e-5 s: the first step after it
+    click step_to_time
+    retype 0.01013
+    key Return
+    click step_to
+    wait_until 20 "Step to t to reach step 406" '(( $(state step) == 406 ))'
+    holds "$(state time) >= 0.01013 && $(state time) < 0.01013 + 2.5e-5" || fail "time $(state time) after Step to t"
+    sleep 0.5
+    (( $(state step) == 406 )) && [[ "$(state running)" == 0 ]] || fail "stepping went on past the time asked"
+    # the pointer back over the picture for the keys
+    xdotool mousemove --window "$window" 1200 100
     key space
     wait_until 10 "Space to run again" '[[ "$(state running)" == 1 ]] && (( $(state step) > 10 ))'
     quit

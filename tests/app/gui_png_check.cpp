@@ -107,7 +107,9 @@ long damaged_pixels_above_notch(const RgbaImage& image, const std::string& scene
   sim.initialize();
   Snapshot first;
   sim.fill_snapshot(first);
-  const Camera camera = fit_camera_beside_panels(first, image.width, image.height, kPanelWidth);
+  // the picture the window writes: its first view, without the panels
+  const Camera camera =
+      picture_camera(fit_camera_beside_panels(first, image.width, image.height, kPanelWidth), image.height);
 
   // the notch end inside the body is its tip
   const FlexBodyDef& body = scene.flex_bodies[0];

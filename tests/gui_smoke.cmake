@@ -134,7 +134,7 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
 
   # real input: recording from the Export panel (PNG folder, MP4), the keys, a live setting
   # typed into its field, the mouse spring on the notched plate
-  foreach(case record_png record_mp4 keys damping spring)
+  foreach(case record_png record_mp4 keys damping refusal spring)
     gui_input_test(${case})
   endforeach()
 

@@ -445,6 +445,7 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   dump_.state("step", static_cast<double>(status_.step));
   dump_.state("time", status_.time);
   dump_.state("bond_damping", status_.settings.bond_damping);
+  dump_.state("dt", status_.settings.dt);
   dump_.state("recording", writer_ ? "1" : "0");
   dump_.state("frames_written", writer_ ? static_cast<double>(writer_->frames_written()) : 0.0);
   int win_w = 1, win_h = 1;

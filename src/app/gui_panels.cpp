@@ -169,7 +169,16 @@ void GuiApp::panel_parameters() {
     }
     ImGui::EndCombo();
   }
+  if (status_.rejected_key == "integrator") error_text("refused: " + status_.rejected_message);
   changed |= input_number("dt [s]", edit.dt);
+  dump_.note_item("dt");
+  // a refused value is shown where it was typed, not only in the log
+  const auto refusal = [this](const char* key) {
+    if (status_.rejected_key != key) return;
+    error_text("refused: " + status_.rejected_message);
+    dump_.note_item(std::string(key) + "_refusal");
+  };
+  refusal("dt");
   const double critical = status_.info.critical_time_step;
   if (critical > 0.0) {
     ImGui::Text("critical dt %.4g s", critical);
@@ -192,9 +201,16 @@ void GuiApp::panel_parameters() {
   if (particles) {
     changed |= input_number("bond damping [Pa s]", edit.bond_damping);
     dump_.note_item("bond_damping");
+    refusal("bond_damping");
     changed |= input_number("global damping [1/s]", edit.global_damping);
+    refusal("global_damping");
     changed |= ImGui::Checkbox("fracture", &edit.fracture);
   }
+  // a refusal that names no field of this panel
+  static const char* fields[] = {"dt", "integrator", "bond_damping", "global_damping"};
+  const bool placed = std::find(std::begin(fields), std::end(fields), status_.rejected_key) != std::end(fields) &&
+                      (particles || status_.rejected_key == "dt" || status_.rejected_key == "integrator");
+  if (!status_.rejected_message.empty() && !placed) error_text("refused: " + status_.rejected_message);
   if (changed) {
     SimCommand c = SimCommand::make(SimCommand::Kind::kApplySettings);
     c.settings = edit;

@@ -119,8 +119,18 @@ void SimWorker::publish() {
   s.commands_applied = applied_;
   s.recording = record_interval_ > 0.0;
   s.mouse_stiffness = mouse_stiffness_;
+  s.rejected_key = rejected_key_;
+  s.rejected_message = rejected_message_;
   std::lock_guard<std::mutex> lock(status_mutex_);
   status_ = std::move(s);
+}
+
+void SimWorker::note_rejection(const std::exception& e) {
+  // the live setting a refusal names ("solver.dt" -> "dt"), for the panel to show it there
+  const auto* input = dynamic_cast<const InputError*>(&e);
+  rejected_key_ = input ? input->where().key : std::string();
+  if (rejected_key_.rfind("solver.", 0) == 0) rejected_key_ = rejected_key_.substr(7);
+  rejected_message_ = input ? input->detail() : std::string(e.what());
 }
 
 void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* what) {
@@ -131,6 +141,8 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   if (keep_settings && !same_live_settings(kept, fresh->settings())) fresh->apply(kept);
   model_ = std::move(fresh);
   mouse_stiffness_ = 0.0;  // a new model holds nothing
+  rejected_key_.clear();
+  rejected_message_.clear();
   ++generation_;
   numerical_error_.reset();
   numerical_message_.clear();
@@ -236,8 +248,11 @@ void SimWorker::apply(SimCommand& c) {
         model_->apply(c.settings);
         numerical_error_.reset();
         numerical_message_.clear();
+        rejected_key_.clear();
+        rejected_message_.clear();
         log_.add("settings: " + describe_settings(model_->settings()) + by);
       } catch (const std::exception& e) {
+        note_rejection(e);
         log_.add("settings rejected: " + std::string(e.what()) + by);
       }
       break;
@@ -245,6 +260,8 @@ void SimWorker::apply(SimCommand& c) {
       LiveSettings s = model_->settings();
       const std::string problem = set_live_parameter(s, c.text, c.value);
       if (!problem.empty()) {
+        rejected_key_ = c.text;
+        rejected_message_ = problem;
         log_.add("set " + c.text + "=" + c.value + " rejected: " + problem + by);
         break;
       }
@@ -252,8 +269,11 @@ void SimWorker::apply(SimCommand& c) {
         model_->apply(s);
         numerical_error_.reset();
         numerical_message_.clear();
+        rejected_key_.clear();
+        rejected_message_.clear();
         log_.add("set " + c.text + "=" + c.value + by);
       } catch (const std::exception& e) {
+        note_rejection(e);
         log_.add("set " + c.text + "=" + c.value + " rejected: " + e.what() + by);
       }
       break;

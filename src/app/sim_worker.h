@@ -77,6 +77,9 @@ struct WorkerStatus {
   long commands_applied = 0;
   bool recording = false;
   double mouse_stiffness = 0.0;       // of the mouse spring held now [N/m]; 0: none
+  // the last refused live setting (its key as set_live_parameter names it, "" when it is not
+  // one field's) and why; cleared by an accepted change or a rebuilt model
+  std::string rejected_key, rejected_message;
 };
 
 class SimWorker {
@@ -140,6 +143,8 @@ class SimWorker {
   double steps_per_second_ = 0.0, sim_per_second_ = 0.0;
   double record_interval_ = 0.0, next_record_ = 0.0;
   double mouse_stiffness_ = 0.0;   // of the spring held by the model (0: none)
+  std::string rejected_key_, rejected_message_;
+  void note_rejection(const std::exception& e);
   long generation_ = 0, scene_generation_ = 0, applied_ = 0;
   std::optional<NumericalDiagnostic> numerical_error_;
   std::string numerical_message_, load_error_;

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -27,6 +28,15 @@ struct MouseSpringForce {
   Vec2 target = Vec2::Zero();
   double stiffness = 0.0, damping = 0.0;  // rigid point; for a patch, the sums over it
   int grabbed_body = -1, grabbed_particle = -1;  // what was grabbed (MouseSpring's indices)
+  // The point pulled towards travels from `from` (where it was at time `since`) to `target` at
+  // most at `speed` [m/s] (0: at once), so a pointer that jumps does not fling a stiff patch.
+  Vec2 from = Vec2::Zero();
+  double since = 0.0, speed = 0.0;
+  Vec2 target_at(double t) const {
+    const Vec2 way = target - from;
+    const double length = way.norm(), reach = speed * std::max(0.0, t - since);
+    return speed <= 0.0 || reach >= length ? target : Vec2(from + way * (reach / length));
+  }
 };
 
 class Dynamics final : public OdeSystem {

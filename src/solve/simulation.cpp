@@ -651,6 +651,8 @@ double Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
   std::optional<MouseSpringForce>& held = s.dynamics->mouse_spring();
   if (held && spring->stiffness <= 0.0 && held->grabbed_body == spring->body &&
       held->grabbed_particle == spring->particle) {
+    held->from = held->target_at(s.time);
+    held->since = s.time;
     held->target = spring->target;
     return held->stiffness;
   }
@@ -690,6 +692,10 @@ double Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
       const Eigen::VectorXd& q = s.state.q;
       const Vec2 grabbed(q[offset + 2 * (spring->particle - first)], q[offset + 2 * (spring->particle - first) + 1]);
       const double reach = flex->horizon();
+      // the patch starts where it is and follows the pointer at most one horizon per 200 steps
+      force.from = grabbed;
+      force.since = s.time;
+      force.speed = dt > 0.0 ? reach / (200.0 * dt) : 0.0;
       double omega = omega_stable;
       if (s.critical_step > 0.0 && dt > 0.0) {
         const double ratio = std::min(1.0, dt / s.critical_step);

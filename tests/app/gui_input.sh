@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_mp4 | keys | damping | spring
+# CASE: record_png | record_mp4 | keys | damping | refusal | spring
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -82,7 +82,10 @@ start() {
 
 # Ctrl+Q, then the program must end on its own with exit code 0 within 30 s
 quit() {
-  key ctrl+q
+  # the program may be gone before the keys are let go: their release is not checked
+  xdotool keydown ctrl q || fail "xdotool keydown ctrl+q"
+  sleep 0.1
+  xdotool keyup q ctrl 2>/dev/null
   local end=$((SECONDS + 30))
   while kill -0 "$pid" 2>/dev/null; do
     ((SECONDS < end)) || fail "the program did not exit within 30 s of Ctrl+Q (frozen window)"
@@ -206,6 +209,26 @@ case "$case_name" in
     wait_until 10 "bond damping 0.25 applied" 'holds "$(state bond_damping) == 0.25"'
     grep -q "settings: .*(ui)" "$log" || fail "the change is not in the log"
     [[ "$(state running)" == 1 ]] || fail "the run stopped"
+    quit
+    ;;
+  refusal)
+    # a time step above the safe limit of the notched plate: refused, and said so under the field
+    start notched_plate.toml
+    dt0=$(state dt)
+    click dt
+    retype 2e-6
+    key Return
+    wait_until 10 "the refusal under the dt field" '[[ -n "$(centre dt_refusal)" ]]'
+    holds "$(state dt) == $dt0" || fail "dt changed to $(state dt)"
+    dt_bottom=$(awk '$1 == "widget" && $2 == "dt" { print $6 }' "$widgets")
+    refusal_top=$(awk '$1 == "widget" && $2 == "dt_refusal" { print $4 }' "$widgets")
+    ((refusal_top >= dt_bottom && refusal_top < dt_bottom + 30)) ||
+      fail "the refusal (top $refusal_top) is not right under the dt field (bottom $dt_bottom)"
+    # an accepted value clears it
+    click dt
+    retype 2e-7
+    key Return
+    wait_until 10 "dt 2e-7 applied, the refusal gone" 'holds "$(state dt) == 2e-7" && [[ -z "$(centre dt_refusal)" ]]'
     quit
     ;;
   spring)

@@ -49,10 +49,11 @@ wait_until() {
 # moves the pointer onto a control and clicks it with the left button
 click() {
   local name=$1 xy bottom height turns=0
-  wait_until 20 "control $name on screen" '[[ -n "$(centre "$name")" ]]'
-  # a control partly below the window's edge: scroll the panel column with the wheel
+  # a control below the window's edge (not shown, or partly): scroll the panel column with the
+  # wheel until it is whole on screen
   read -r _ height < <(state window)
-  while bottom=$(awk -v k="$name" '$1 == "widget" && $2 == k { print $6 }' "$widgets") && ((bottom > height - 2)); do
+  while bottom=$(awk -v k="$name" '$1 == "widget" && $2 == k { print $6 }' "$widgets") &&
+        [[ -z "$bottom" ]] || ((bottom > height - 2)); do
     ((turns++ < 40)) || fail "control $name stays below the window's edge"
     xdotool mousemove --window "$window" 100 $((height / 2)) click 5 || fail "xdotool wheel"
     sleep 0.2
@@ -121,8 +122,9 @@ holds() { awk "BEGIN { exit !($1) }"; }
 # recording from the Export panel: open it, name the target, Start, let frames come, Stop
 record() {
   local target=$1
+  shift
   # a run that does not reach its end (and pause) while it records
-  start flexible_pendulum.toml --set solver.end_time=1000
+  start flexible_pendulum.toml --set solver.end_time=1000 "$@"
   click export_header
   click record_path
   retype "$target"
@@ -132,7 +134,12 @@ record() {
   key Return
   click start_recording
   wait_until 30 "recording to start (Stop recording shown)" '[[ -n "$(centre stop_recording)" ]]'
+  # the swinging pendulum would make the view grow: not while recording
+  local view
+  view=$(state world_to_window)
   wait_until 60 "at least 5 recorded frames" '(( $(state frames_written) >= 5 ))'
+  sleep 1
+  [[ "$(state world_to_window)" == "$view" ]] || fail "the view changed during the recording"
   click stop_recording
   wait_until 30 "recording to stop (Start recording shown again)" \
     '[[ "$(state recording)" == 0 && -n "$(centre start_recording)" ]]'
@@ -154,10 +161,14 @@ case "$case_name" in
     fi
     ;;
   record_mp4)
-    record "$work/movie.mp4"
+    # in a 1024x768 window (a projector): the panel column scrolls to the buttons
+    record "$work/movie.mp4" --size 1024x768
+    [[ "$(state window)" == "1024 768" ]] || fail "window $(state window), asked 1024x768"
     frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
              -of csv=p=0 "$work/movie.mp4") || fail "ffprobe cannot read the movie"
     ((frames == recorded)) || fail "the movie has $frames frames, the window recorded $recorded"
+    size=$(ffprobe -v error -select_streams v:0 -show_entries stream=width,height -of csv=p=0:s=x "$work/movie.mp4")
+    [[ "$size" == 1024x768 ]] || fail "movie frames of $size, the window is 1024x768"
     ;;
   keys)
     start flexible_pendulum.toml

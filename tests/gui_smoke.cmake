@@ -107,6 +107,16 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
                          FIXTURES_REQUIRED gui_picture_${name})
   endforeach()
 
+  # every shipped scene recorded from the window over its whole run (a frame every seventh of the
+  # end time, an interval no whole number of steps): exit 0 and exactly 8 frames
+  foreach(scene IN LISTS gui_scenes)
+    get_filename_component(name "${scene}" NAME_WE)
+    add_test(NAME gui_record_scene_${name}
+             COMMAND ${gui_xvfb} bash "${CMAKE_CURRENT_SOURCE_DIR}/app/gui_record_scene.sh"
+                     $<TARGET_FILE:periflex> "${scene}" "${gui_out}/record_scene")
+    set_tests_properties(gui_record_scene_${name} PROPERTIES LABELS gui TIMEOUT 400 RESOURCE_LOCK xvfb)
+  endforeach()
+
   # the crack: run the notched plate to t = 0.8 ms, well after the crack starts (near 0.4 ms),
   # without the probe crosses and markers (yellow and orange, like the upper colour map) or the
   # overlay legend

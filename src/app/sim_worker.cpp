@@ -152,7 +152,8 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   log_.add(std::string(what) + ": scene '" + scene.name + "' at t = 0, paused");
   // a recording goes on from the new start
   if (record_interval_ > 0.0) {
-    next_record_ = model_->time();
+    record_start_ = model_->time();
+    record_marks_ = 0;
     record_if_due();
   }
 }
@@ -294,7 +295,8 @@ void SimWorker::apply(SimCommand& c) {
       break;
     case Kind::kRecord:
       record_interval_ = c.number > 0.0 ? c.number : 0.0;
-      next_record_ = model_->time();
+      record_start_ = model_->time();
+    record_marks_ = 0;
       log_.add(record_interval_ > 0.0 ? "recording every " + std::to_string(record_interval_) + " s" + by
                                       : "recording stopped" + by);
       // the first frame is the state at the moment recording starts
@@ -306,9 +308,12 @@ void SimWorker::apply(SimCommand& c) {
 }
 
 void SimWorker::record_if_due() {
-  if (record_interval_ <= 0.0 || model_->time() + 1e-12 * record_interval_ < next_record_) return;
-  // frames at fixed simulated times: one per crossed interval mark
-  while (next_record_ <= model_->time() + 1e-12 * record_interval_) next_record_ += record_interval_;
+  // frames at fixed simulated times: the first step at or after each mark start + k interval
+  // (marks counted, not summed, so they do not drift), one frame however many marks a step crosses
+  const auto mark = [this](long k) { return record_start_ + static_cast<double>(k) * record_interval_; };
+  const double now = model_->time() + 1e-9 * record_interval_;
+  if (record_interval_ <= 0.0 || now < mark(record_marks_)) return;
+  while (mark(record_marks_) <= now) ++record_marks_;
   Snapshot frame;
   model_->fill_snapshot(frame);
   std::unique_lock<std::mutex> lock(record_mutex_);

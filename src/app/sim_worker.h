@@ -141,7 +141,8 @@ class SimWorker {
   long rate_steps_ = 0;
   double rate_sim_ = 0.0;
   double steps_per_second_ = 0.0, sim_per_second_ = 0.0;
-  double record_interval_ = 0.0, next_record_ = 0.0;
+  double record_interval_ = 0.0, record_start_ = 0.0;
+  long record_marks_ = 0;          // marks already recorded
   double mouse_stiffness_ = 0.0;   // of the spring held by the model (0: none)
   std::string rejected_key_, rejected_message_;
   void note_rejection(const std::exception& e);

@@ -18,6 +18,22 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   set(flexible "${PROJECT_SOURCE_DIR}/scenes/flexible_pendulum.toml")
   set(rigid "${PROJECT_SOURCE_DIR}/scenes/slider_crank.toml")
   set(notched "${PROJECT_SOURCE_DIR}/scenes/notched_plate.toml")
+
+  # The window driven by real X input events (tests/app/gui_input.sh): xdotool clicks the Export
+  # panel's buttons, presses the keys, types into a field and drags with the mouse; each case
+  # must end on its own after Ctrl+Q (a frozen window fails within the time limit).
+  find_program(PERIFLEX_XDOTOOL xdotool)
+  function(gui_input_test case)
+    if(NOT PERIFLEX_XDOTOOL)
+      return()
+    endif()
+    add_test(NAME gui_input_${case}
+             COMMAND ${gui_xvfb} bash "${CMAKE_CURRENT_SOURCE_DIR}/app/gui_input.sh" ${case}
+                     $<TARGET_FILE:periflex> "${PROJECT_SOURCE_DIR}/scenes" "${gui_out}/input"
+                     $<TARGET_FILE:gui_png_check>)
+    set_tests_properties(gui_input_${case} PROPERTIES LABELS gui TIMEOUT 180 RESOURCE_LOCK xvfb
+                         ENVIRONMENT "${ARGN}" FAIL_REGULAR_EXPRESSION "ThreadSanitizer")
+  endfunction()
 endif()
 
 if(TARGET periflex_app AND PERIFLEX_XVFB_RUN AND PERIFLEX_SANITIZE STREQUAL "thread")
@@ -73,6 +89,9 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN AND PERIFLEX_SANITIZE STREQUAL "thr
          "record ${tsan_movie} 0.02@11" "wait 0.5@12" "stop_record@13" "follow crank@14" "reload@15"
          "run@16" "expect running@16" "follow none@17")
   gui_tsan_test(gui_tsan_rigid "${rigid}" 20 "${tsan_rigid}")
+
+  # recording started and stopped with the Export panel's buttons (real clicks)
+  gui_input_test(record_mp4 ${gui_tsan_env})
 elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
 
   # one picture per shipped scene, then the checker on it
@@ -86,6 +105,16 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
     add_test(NAME gui_smoke_${name}_picture COMMAND gui_png_check "${gui_out}/${name}.png")
     set_tests_properties(gui_smoke_${name}_picture PROPERTIES LABELS gui
                          FIXTURES_REQUIRED gui_picture_${name})
+  endforeach()
+
+  # every shipped scene recorded from the window over its whole run (a frame every seventh of the
+  # end time, an interval no whole number of steps): exit 0 and exactly 8 frames
+  foreach(scene IN LISTS gui_scenes)
+    get_filename_component(name "${scene}" NAME_WE)
+    add_test(NAME gui_record_scene_${name}
+             COMMAND ${gui_xvfb} bash "${CMAKE_CURRENT_SOURCE_DIR}/app/gui_record_scene.sh"
+                     $<TARGET_FILE:periflex> "${scene}" "${gui_out}/record_scene")
+    set_tests_properties(gui_record_scene_${name} PROPERTIES LABELS gui TIMEOUT 400 RESOURCE_LOCK xvfb)
   endforeach()
 
   # the crack: run the notched plate to t = 0.8 ms, well after the crack starts (near 0.4 ms),
@@ -112,6 +141,12 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
     set_tests_properties(gui_smoke_no_crack_picture PROPERTIES LABELS gui
                          FIXTURES_REQUIRED gui_picture_no_crack)
   endif()
+
+  # real input: recording from the Export panel (PNG folder, MP4), the keys, a live setting
+  # typed into its field, the mouse spring on the notched plate
+  foreach(case record_png record_mp4 keys damping refusal spring)
+    gui_input_test(${case})
+  endforeach()
 
   # the controls: pause, step, change a live setting, resume, switch colour map (each checked),
   # then from the start pull the pendulum's free end up with the mouse spring and let go

@@ -68,15 +68,14 @@ std::string GuiApp::resolve_scene_path(const std::string& path) const {
 }
 
 std::vector<std::string> GuiApp::list_scenes() const {
-  // every .toml under scenes/, by path relative to it
+  // the runnable scenes: scenes/*.toml (the studies' and stability checks' files in the
+  // folders below are inputs of `periflex study` and `periflex stability`, not scenes to open)
   std::vector<std::string> out;
   const fs::path root = fs::path(resource_root_) / "scenes";
   std::error_code ec;
   if (!fs::is_directory(root, ec)) return out;
-  for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); ++it) {
-    if (it->is_regular_file() && it->path().extension() == ".toml") {
-      out.push_back(fs::relative(it->path(), root).string());
-    }
+  for (auto it = fs::directory_iterator(root, ec); it != fs::directory_iterator(); ++it) {
+    if (it->is_regular_file() && it->path().extension() == ".toml") out.push_back(it->path().filename().string());
   }
   std::sort(out.begin(), out.end());
   return out;
@@ -229,12 +228,9 @@ void GuiApp::execute(const ScriptAction& a) {
     pending_screenshot_ = a.args[0];
     screenshot_with_panels_ = true;
   } else if (verb == "record") {
-    int w = 0, h = 0;
-    glfwGetFramebufferSize(window_, &w, &h);
-    start_recording(a.args[0], std::atof(a.args[1].c_str()), record_fps_, w, h);
-    if (!writer_) script_failure("recording did not start: " + record_message_);
+    pending_record_start_ = RecordRequest{a.args[0], std::atof(a.args[1].c_str()), record_fps_, "script"};
   } else if (verb == "stop_record") {
-    stop_recording();
+    pending_record_stop_ = true;
   } else if (verb == "grab") {
     // after the requests sent so far (a reset, say) have been applied
     pending_expect_ = a;
@@ -326,6 +322,10 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       log_.add("fit view (key)");
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) pending_screenshot_ = default_screenshot_name();
+    if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Q, false)) {
+      log_.add("quit (key)");
+      quit_ = true;
+    }
   }
 
   // window coordinates to framebuffer pixels (they differ on high-density screens)
@@ -407,6 +407,95 @@ void GuiApp::draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, 
   for (int i = first; i < list->VtxBuffer.Size; ++i) list->VtxBuffer[i].pos.x += shift;
 }
 
+void GuiApp::draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height) {
+  // what the mouse holds: a line from the held point to the pointer, the force at the pointer
+  if (!grabbing_ || status_.mouse_stiffness <= 0.0) return;
+  Vec2 held;
+  if (grab_spring_.particle >= 0 && grab_spring_.particle < static_cast<int>(snap.px.size())) {
+    held = Vec2(snap.px[grab_spring_.particle], snap.py[grab_spring_.particle]);
+  } else if (grab_spring_.body >= 0 && grab_spring_.body + 1 < static_cast<int>(snap.bodies.size())) {
+    const Snapshot::Pose& pose = snap.bodies[grab_spring_.body + 1];
+    held = Vec2(pose.x, pose.y) + rotation(pose.angle) * grab_spring_.local_point;
+  } else {
+    return;
+  }
+  const float scale = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
+  const auto window_point = [&](const Vec2& world) {
+    const Vec2 p = camera_.to_pixels(world, fb_width, fb_height);
+    return ImVec2(static_cast<float>(p.x()) / scale, static_cast<float>(p.y()) / scale);
+  };
+  const ImVec2 a = window_point(held), b = window_point(grab_spring_.target);
+  ImDrawList* list = ImGui::GetBackgroundDrawList();
+  const ImU32 colour = IM_COL32(90, 220, 255, 255);
+  list->AddLine(a, b, colour, 2.0f);
+  list->AddCircleFilled(a, 4.0f, colour);
+  list->AddCircle(b, 6.0f, colour, 0, 2.0f);
+  // the spring's pull (its damping part left out): stiffness times stretch
+  const double force = status_.mouse_stiffness * (grab_spring_.target - held).norm();
+  char text[48];
+  std::snprintf(text, sizeof text, "%.3g N", force);
+  list->AddText(ImVec2(b.x + 9.0f, b.y - 18.0f), colour, text);
+  dump_.state("spring_force", force);
+}
+
+void GuiApp::dump_state(int fb_width, int fb_height) {
+  // what input-driven tests compare against (see widget_dump.h)
+  if (!dump_.enabled()) return;
+  dump_.state("running", status_.running ? "1" : "0");
+  dump_.state("step", static_cast<double>(status_.step));
+  dump_.state("time", status_.time);
+  dump_.state("bond_damping", status_.settings.bond_damping);
+  dump_.state("dt", status_.settings.dt);
+  dump_.state("recording", writer_ ? "1" : "0");
+  dump_.state("frames_written", writer_ ? static_cast<double>(writer_->frames_written()) : 0.0);
+  int win_w = 1, win_h = 1;
+  glfwGetWindowSize(window_, &win_w, &win_h);
+  dump_.state("window", std::to_string(win_w) + " " + std::to_string(win_h));
+  const double sx = double(fb_width) / std::max(1, win_w), sy = double(fb_height) / std::max(1, win_h);
+  // world to window coordinates, so a test can aim at a world point:
+  // window x = ax X + bx, window y = ay Y + by
+  const Vec2 origin = camera_.to_pixels(Vec2(0.0, 0.0), fb_width, fb_height);
+  const Vec2 unit = camera_.to_pixels(Vec2(1.0, 1.0), fb_width, fb_height);
+  char mapping[160];
+  std::snprintf(mapping, sizeof mapping, "%.9g %.9g %.9g %.9g", (unit.x() - origin.x()) / sx, origin.x() / sx,
+                (unit.y() - origin.y()) / sy, origin.y() / sy);
+  dump_.state("world_to_window", std::string(mapping));
+  const Snapshot& snap = worker_.snapshot();
+  const auto particle = [&snap](int i) {
+    char text[80];
+    std::snprintf(text, sizeof text, "%d %.9g %.9g", i, snap.px[i], snap.py[i]);
+    return std::string(text);
+  };
+  if (grabbing_ && grab_spring_.particle >= 0 && grab_spring_.particle < static_cast<int>(snap.px.size())) {
+    dump_.state("grabbed", particle(grab_spring_.particle));
+  }
+  // the particle the left button would grab now
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const Vec2 world = camera_.to_world(mouse.x * sx, mouse.y * sy, fb_width, fb_height);
+  const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
+  if (std::optional<MouseSpring> s = pick(snap, world, tolerance); s && s->particle >= 0) {
+    dump_.state("pointed", particle(s->particle));
+  }
+}
+
+void GuiApp::run_pending_actions(int fb_width, int fb_height) {
+  // a stop asked in the same frame as a start applies to the recording running before it
+  if (pending_record_stop_) {
+    pending_record_stop_ = false;
+    stop_recording();
+  }
+  if (!pending_picture_.empty()) {
+    write_picture(pending_picture_, fb_width, fb_height);
+    pending_picture_.clear();
+  }
+  if (pending_record_start_) {
+    const RecordRequest r = *pending_record_start_;
+    pending_record_start_.reset();
+    start_recording(r.path, r.interval, r.fps, fb_width, fb_height);
+    if (!writer_ && r.origin == "script") script_failure("recording did not start: " + record_message_);
+  }
+}
+
 int GuiApp::run() {
   for (;;) {
     glfwPollEvents();
@@ -424,8 +513,9 @@ int GuiApp::run() {
     // the last frame of a --frames run is the screenshot
     const bool last_frame = options_.frames > 0 && advance && frame_ + 1 >= options_.frames;
     if (last_frame && !options_.screenshot.empty()) pending_screenshot_ = options_.screenshot;
-    const std::string screenshot = pending_screenshot_;
-    const bool with_panels = screenshot_with_panels_;
+    // the whole window (screenshot_ui) is read from it; a picture is drawn off-screen after it
+    const std::string screenshot = screenshot_with_panels_ ? pending_screenshot_ : std::string();
+    if (!screenshot_with_panels_ && !pending_screenshot_.empty()) pending_picture_ = pending_screenshot_;
     pending_screenshot_.clear();
     screenshot_with_panels_ = false;
 
@@ -438,6 +528,7 @@ int GuiApp::run() {
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
+      dump_.begin_frame();
       handle_input(fb_width, fb_height);
 
       // camera: fit when asked (and once there is something to fit), follow a body
@@ -448,7 +539,8 @@ int GuiApp::run() {
         auto_frame_ = true;
       }
       // until the user moves the view, it grows to keep what moves in sight
-      if (auto_frame_ && follow_ <= 0 && snap.geometry && grow_framing(framing_, snap)) {
+      // (not while recording: a movie keeps the camera it started with)
+      if (auto_frame_ && follow_ <= 0 && !writer_ && snap.geometry && grow_framing(framing_, snap)) {
         camera_ = fit_camera_beside_panels(framing_.shown, fb_width, fb_height, kPanelWidth);
       }
       if (follow_ > 0 && follow_ < static_cast<int>(snap.bodies.size())) {
@@ -462,17 +554,17 @@ int GuiApp::run() {
         log_.add(std::string("drawing failed: ") + e.what() + "; back to the default colour map");
         render_.colormap = RenderSettings{}.colormap;
       }
-      // screenshots show the picture and its overlay, not the panels
-      const bool panels = screenshot.empty() || with_panels;
-      if (panels) draw_panels(fb_width, fb_height);
-      if (render_.show_overlay && snap.geometry) {
-        draw_overlay_beside(snap, panels ? kPanelWidth : 0, fb_width, fb_height);
-      }
+      draw_mouse_spring(snap, fb_width, fb_height);
+      draw_panels(fb_width, fb_height);
+      if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
+      dump_state(fb_width, fb_height);
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+      dump_.end_frame();
     }
     if (!screenshot.empty()) capture_screenshot(screenshot, fb_width, fb_height);
     glfwSwapBuffers(window_);
+    run_pending_actions(fb_width, fb_height);
 
     if (advance) ++frame_;
     if (quit_ || (options_.frames > 0 && frame_ >= options_.frames)) break;

@@ -14,8 +14,10 @@
 #include "app/plot_history.h"
 #include "app/sim_worker.h"
 #include "app/view_fit.h"
+#include "app/widget_dump.h"
 #include "render/camera.h"
 #include "render/frame_writer.h"
+#include "render/image.h"
 #include "render/renderer.h"
 #include "render/view.h"
 
@@ -46,6 +48,8 @@ class GuiApp {
   void capture_screenshot(const std::string& path, int fb_width, int fb_height);
   void send(SimCommand command);
   void script_failure(const std::string& what);
+  void dump_state(int fb_width, int fb_height);
+  void draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height);
 
   // panels (gui_panels.cpp)
   void panel_simulation();
@@ -53,15 +57,23 @@ class GuiApp {
   void panel_view();
   void panel_view_controls();
   void panel_plots();
-  void panel_export(int fb_width, int fb_height);
+  void panel_export();
   void panel_log();
   void numerical_error_modal();
 
   // recording (gui_record.cpp)
   void start_recording(const std::string& path, double interval, double fps, int fb_width, int fb_height);
   void stop_recording();
+  // carries out what panels, keys and the script asked for during the frame, outside the
+  // locked ImGui frame (the recorder's own ImGui context takes the same lock)
+  void run_pending_actions(int fb_width, int fb_height);
   void pump_recording();
   void write_recorded_frame(const Snapshot& frame, FrameWriter& writer);
+  // pictures without the panels, as recorded frames and screenshots show them
+  RgbaImage draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, FrameOverlay& overlay,
+                         int width, int height);
+  static bool make_target(int width, int height, unsigned& fbo, unsigned& rbo);
+  void write_picture(const std::string& path, int fb_width, int fb_height);
 
   std::string default_screenshot_name() const;
   std::string resolve_scene_path(const std::string& path) const;
@@ -88,10 +100,14 @@ class GuiApp {
   LiveSettings edit_;               // the live-parameter panel's copy
   long edit_generation_ = -1;
   int speed_choice_ = 0;
+  int step_count_ = 100;            // the Simulation panel's "Step N"
+  double step_to_time_ = 0.0;       // its "Step to t"; 0: not set yet
   std::vector<std::string> scenes_;
   int scene_choice_ = -1;
   long shown_error_step_ = -2;      // the numerical failure last shown in the modal
   long log_shown_ = 0;              // log lines the panel has scrolled to
+
+  WidgetDump dump_;                 // control positions and state for input-driven tests
 
   // script and frame count
   long frame_ = 0;
@@ -108,8 +124,18 @@ class GuiApp {
   bool grab_by_mouse_ = false;      // false: a script holds the grab
   MouseSpring grab_spring_;
 
-  // capture and recording
+  // capture and recording; panels and keys only record requests (pending_*), carried out by
+  // run_pending_actions between frames
+  struct RecordRequest {
+    std::string path;
+    double interval = 0.0;
+    double fps = 30.0;
+    std::string origin;             // "ui" or "script", for the log and script failures
+  };
+  std::optional<RecordRequest> pending_record_start_;
+  bool pending_record_stop_ = false;
   std::string pending_screenshot_;
+  std::string pending_picture_;     // a screenshot without the panels, drawn between frames
   bool screenshot_with_panels_ = false;
   char screenshot_path_[512] = "";
   char record_path_[512] = "frames";
@@ -118,6 +144,7 @@ class GuiApp {
   std::unique_ptr<FrameWriter> writer_;
   std::unique_ptr<FrameOverlay> record_overlay_;   // recorded frames carry the window's overlay
   unsigned fbo_ = 0, color_rbo_ = 0;
+  Camera record_camera_;
   int record_width_ = 0, record_height_ = 0;
   std::string record_message_;
 };

@@ -60,7 +60,9 @@ void GuiApp::draw_panels(int fb_width, int fb_height) {
   if (ImGui::CollapsingHeader("Live parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters();
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) panel_view();
   if (ImGui::CollapsingHeader("Plots")) panel_plots();
-  if (ImGui::CollapsingHeader("Export")) panel_export(fb_width, fb_height);
+  const bool export_open = ImGui::CollapsingHeader("Export");
+  dump_.note_item("export_header");
+  if (export_open) panel_export();
   if (ImGui::CollapsingHeader("Log", ImGuiTreeNodeFlags_DefaultOpen)) panel_log();
   ImGui::PopItemWidth();
   ImGui::End();
@@ -74,12 +76,39 @@ void GuiApp::panel_simulation() {
   if (ImGui::Button(status_.running ? "Pause" : "Run", ImVec2(60, 0))) {
     send(SimCommand::make(Kind::kToggleRun));
   }
+  dump_.note_item("run_pause");
   ImGui::SameLine();
   if (ImGui::Button("Step")) send(SimCommand::make(Kind::kStep));
+  dump_.note_item("step");
   ImGui::SameLine();
   if (ImGui::Button("Reset")) send(SimCommand::make(Kind::kReset));
+  dump_.note_item("reset");
   ImGui::SameLine();
   if (ImGui::Button("Reload")) send(SimCommand::make(Kind::kReload));
+
+  // several steps at once, or up to a time: a single step of a fracture scene is 0.4 us
+  ImGui::PushItemWidth(110.0f);
+  ImGui::InputInt("##stepcount", &step_count_, 0, 0);
+  dump_.note_item("step_count");
+  step_count_ = std::clamp(step_count_, 1, 100000000);
+  ImGui::SameLine();
+  if (ImGui::Button("Step N")) {
+    SimCommand c = SimCommand::make(Kind::kStep);
+    c.count = step_count_;
+    send(c);
+  }
+  dump_.note_item("step_n");
+  if (step_to_time_ <= 0.0 && status_.end_time > 0.0) step_to_time_ = status_.end_time / 10.0;
+  ImGui::InputDouble("##steptime", &step_to_time_, 0.0, 0.0, "%.6g");
+  dump_.note_item("step_to_time");
+  ImGui::SameLine();
+  if (ImGui::Button("Step to t")) {
+    SimCommand c = SimCommand::make(Kind::kStepTo);
+    c.number = step_to_time_;
+    send(c);
+  }
+  dump_.note_item("step_to");
+  ImGui::PopItemWidth();
 
   // pace: the nearest offered factor is shown as chosen
   int current = 0;
@@ -140,7 +169,16 @@ void GuiApp::panel_parameters() {
     }
     ImGui::EndCombo();
   }
+  if (status_.rejected_key == "integrator") error_text("refused: " + status_.rejected_message);
   changed |= input_number("dt [s]", edit.dt);
+  dump_.note_item("dt");
+  // a refused value is shown where it was typed, not only in the log
+  const auto refusal = [this](const char* key) {
+    if (status_.rejected_key != key) return;
+    error_text("refused: " + status_.rejected_message);
+    dump_.note_item(std::string(key) + "_refusal");
+  };
+  refusal("dt");
   const double critical = status_.info.critical_time_step;
   if (critical > 0.0) {
     ImGui::Text("critical dt %.4g s", critical);
@@ -162,9 +200,17 @@ void GuiApp::panel_parameters() {
 
   if (particles) {
     changed |= input_number("bond damping [Pa s]", edit.bond_damping);
+    dump_.note_item("bond_damping");
+    refusal("bond_damping");
     changed |= input_number("global damping [1/s]", edit.global_damping);
+    refusal("global_damping");
     changed |= ImGui::Checkbox("fracture", &edit.fracture);
   }
+  // a refusal that names no field of this panel
+  static const char* fields[] = {"dt", "integrator", "bond_damping", "global_damping"};
+  const bool placed = std::find(std::begin(fields), std::end(fields), status_.rejected_key) != std::end(fields) &&
+                      (particles || status_.rejected_key == "dt" || status_.rejected_key == "integrator");
+  if (!status_.rejected_message.empty() && !placed) error_text("refused: " + status_.rejected_message);
   if (changed) {
     SimCommand c = SimCommand::make(SimCommand::Kind::kApplySettings);
     c.settings = edit;
@@ -282,7 +328,7 @@ void GuiApp::panel_plots() {
   }
 }
 
-void GuiApp::panel_export(int fb_width, int fb_height) {
+void GuiApp::panel_export() {
   ImGui::InputText("##shot", screenshot_path_, sizeof screenshot_path_);
   ImGui::SameLine();
   if (ImGui::Button("Screenshot (S)")) {
@@ -292,16 +338,21 @@ void GuiApp::panel_export(int fb_width, int fb_height) {
   ImGui::Separator();
   ImGui::TextWrapped("Record: a folder for a PNG sequence, or a .mp4 file (needs ffmpeg)");
   ImGui::InputText("##record", record_path_, sizeof record_path_);
+  dump_.note_item("record_path");
   if (record_interval_ <= 0.0) record_interval_ = status_.end_time > 0.0 ? status_.end_time / 200.0 : 0.01;
   input_number("every [sim s]", record_interval_);
+  dump_.note_item("record_interval");
   ImGui::InputFloat("movie fps", &record_fps_, 0.0f, 0.0f, "%.0f");
   if (!writer_) {
+    // a request: recording starts between frames, outside this ImGui frame
     if (ImGui::Button("Start recording")) {
-      start_recording(record_path_, record_interval_, record_fps_, fb_width, fb_height);
+      pending_record_start_ = RecordRequest{record_path_, record_interval_, record_fps_, "ui"};
     }
+    dump_.note_item("start_recording");
   } else {
     ImGui::Text("%ld frames written", writer_->frames_written());
-    if (ImGui::Button("Stop recording")) stop_recording();
+    if (ImGui::Button("Stop recording")) pending_record_stop_ = true;
+    dump_.note_item("stop_recording");
   }
   if (!record_message_.empty()) ImGui::TextWrapped("%s", record_message_.c_str());
 }

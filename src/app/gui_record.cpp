@@ -4,6 +4,7 @@
 // hands the pixels to a frame writer (PNG sequence or MP4 through ffmpeg).
 #include <algorithm>
 #include <exception>
+#include <stdexcept>
 
 #include "app/gui_app.h"
 #include "app/view_fit.h"
@@ -63,48 +64,81 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
   }
 
   // the off-screen target the recorded frames are drawn into
-  glGenFramebuffers(1, &fbo_);
-  glGenRenderbuffers(1, &color_rbo_);
-  glBindRenderbuffer(GL_RENDERBUFFER, color_rbo_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, record_width_, record_height_);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rbo_);
-  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  if (!complete) {
+  if (!make_target(record_width_, record_height_, fbo_, color_rbo_)) {
     record_message_ = "the off-screen framebuffer for recording is incomplete";
     log_.add("recording could not start: " + record_message_);
     writer_.reset();
     record_overlay_.reset();
-    glDeleteFramebuffers(1, &fbo_);
-    glDeleteRenderbuffers(1, &color_rbo_);
-    fbo_ = color_rbo_ = 0;
     return;
   }
+  // the movie keeps the camera the window has now (the window stops growing its view too)
+  record_camera_ = picture_camera(camera_, record_height_);
   record_message_ = "recording to " + path;
   SimCommand c = SimCommand::make(SimCommand::Kind::kRecord);
   c.number = interval;
   send(c);
 }
 
-void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
-  // draw off-screen with the overlay, read back (rows bottom-up in GL), hand to the writer
-  // the movie has no panels: centre what the window shows beside them
-  Camera camera = camera_;
-  camera.center.x() += 0.5 * kPanelWidth * camera.view_height / std::max(1, record_height_);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  renderer_->draw(frame, camera, render_, record_width_, record_height_);
-  if (render_.show_overlay && frame.geometry) {
-    record_overlay_->draw(*renderer_, frame, render_, record_width_, record_height_);
-  }
+RgbaImage GuiApp::draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, FrameOverlay& overlay,
+                               int width, int height) {
+  // draw off-screen with the overlay, read back (rows bottom-up in GL)
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  renderer_->draw(frame, camera, render_, width, height);
+  if (render_.show_overlay && frame.geometry) overlay.draw(*renderer_, frame, render_, width, height);
   RgbaImage image;
-  image.resize(record_width_, record_height_);
+  image.resize(width, height);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, record_width_, record_height_, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   flip_rows(image);
   for (size_t i = 3; i < image.pixels.size(); i += 4) image.pixels[i] = 255;
-  writer.write(image);
+  return image;
+}
+
+bool GuiApp::make_target(int width, int height, unsigned& fbo, unsigned& rbo) {
+  glGenFramebuffers(1, &fbo);
+  glGenRenderbuffers(1, &rbo);
+  glBindRenderbuffer(GL_RENDERBUFFER, rbo);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rbo);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (!complete) {
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rbo);
+    fbo = rbo = 0;
+  }
+  return complete;
+}
+
+void GuiApp::write_picture(const std::string& path, int fb_width, int fb_height) {
+  // a screenshot is framed as a recorded frame: the window's picture without the panels, drawn
+  // off-screen, so the window itself keeps its panels (no blank strip, no flicker)
+  const Snapshot& snap = worker_.snapshot();
+  unsigned fbo = 0, rbo = 0;
+  try {
+    if (!snap.geometry) throw std::runtime_error("nothing drawn yet");
+    if (!make_target(fb_width, fb_height, fbo, rbo)) throw std::runtime_error("off-screen framebuffer incomplete");
+    FrameOverlay overlay;
+    const RgbaImage image = draw_picture(snap, picture_camera(camera_, fb_height), fbo, overlay, fb_width, fb_height);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &rbo);
+    write_png(path, image);
+    log_.add("screenshot " + path + " (" + std::to_string(fb_width) + "x" + std::to_string(fb_height) +
+             ", t = " + std::to_string(snap.time) + ")");
+  } catch (const std::exception& e) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    if (fbo) glDeleteFramebuffers(1, &fbo);
+    if (rbo) glDeleteRenderbuffers(1, &rbo);
+    log_.add(std::string("screenshot failed: ") + e.what());
+    if (options_.frames > 0) exit_code_ = kExitOther;
+  }
+}
+
+void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
+  // the camera the recording started with: a movie's view does not jump
+  writer.write(draw_picture(frame, record_camera_, fbo_, *record_overlay_, record_width_, record_height_));
 }
 
 void GuiApp::pump_recording() {

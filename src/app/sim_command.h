@@ -15,6 +15,7 @@ struct SimCommand {
     kPause,          // stop stepping after the current step
     kToggleRun,      // run when paused, pause when running
     kStep,           // pause, then take `count` steps
+    kStepTo,         // pause, then step until the time reaches `number` (the first step at or after it)
     kReset,          // rebuild the current scene from memory, keeping the live settings
     kReload,         // re-read the scene file from disk (keeps the old model if it fails)
     kLoadScene,      // switch to the scene file in `text`

@@ -1,5 +1,7 @@
 #include "app/sim_worker.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 
@@ -116,8 +118,19 @@ void SimWorker::publish() {
   s.load_error = load_error_;
   s.commands_applied = applied_;
   s.recording = record_interval_ > 0.0;
+  s.mouse_stiffness = mouse_stiffness_;
+  s.rejected_key = rejected_key_;
+  s.rejected_message = rejected_message_;
   std::lock_guard<std::mutex> lock(status_mutex_);
   status_ = std::move(s);
+}
+
+void SimWorker::note_rejection(const std::exception& e) {
+  // the live setting a refusal names ("solver.dt" -> "dt"), for the panel to show it there
+  const auto* input = dynamic_cast<const InputError*>(&e);
+  rejected_key_ = input ? input->where().key : std::string();
+  if (rejected_key_.rfind("solver.", 0) == 0) rejected_key_ = rejected_key_.substr(7);
+  rejected_message_ = input ? input->detail() : std::string(e.what());
 }
 
 void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* what) {
@@ -127,6 +140,9 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   // live changes carry over; a model already on those settings is left alone
   if (keep_settings && !same_live_settings(kept, fresh->settings())) fresh->apply(kept);
   model_ = std::move(fresh);
+  mouse_stiffness_ = 0.0;  // a new model holds nothing
+  rejected_key_.clear();
+  rejected_message_.clear();
   ++generation_;
   numerical_error_.reset();
   numerical_message_.clear();
@@ -136,7 +152,8 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   log_.add(std::string(what) + ": scene '" + scene.name + "' at t = 0, paused");
   // a recording goes on from the new start
   if (record_interval_ > 0.0) {
-    next_record_ = model_->time();
+    record_start_ = model_->time();
+    record_marks_ = 0;
     record_if_due();
   }
 }
@@ -198,6 +215,21 @@ void SimWorker::apply(SimCommand& c) {
       pending_steps_ += c.count > 0 ? c.count : 1;
       log_.add("step x" + std::to_string(c.count > 0 ? c.count : 1) + by);
       break;
+    case Kind::kStepTo: {
+      if (numerical_error_) {
+        log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
+        break;
+      }
+      running_ = false;
+      // whole steps of dt from now, the last one at or after the time asked (a step of dt
+      // that would overshoot it by less than a billionth of dt is not taken)
+      const double dt = model_->settings().dt;
+      const double remaining = c.number - model_->time();
+      const double steps = dt > 0.0 && remaining > 0.0 ? std::ceil(remaining / dt - 1e-9) : 0.0;
+      pending_steps_ = static_cast<int>(std::min(steps, 2e9));
+      log_.add("step to t = " + std::to_string(c.number) + ": " + std::to_string(pending_steps_) + " steps" + by);
+      break;
+    }
     case Kind::kReset:
       try {
         rebuild(scene_, true, ("reset" + by).c_str());
@@ -217,8 +249,11 @@ void SimWorker::apply(SimCommand& c) {
         model_->apply(c.settings);
         numerical_error_.reset();
         numerical_message_.clear();
+        rejected_key_.clear();
+        rejected_message_.clear();
         log_.add("settings: " + describe_settings(model_->settings()) + by);
       } catch (const std::exception& e) {
+        note_rejection(e);
         log_.add("settings rejected: " + std::string(e.what()) + by);
       }
       break;
@@ -226,6 +261,8 @@ void SimWorker::apply(SimCommand& c) {
       LiveSettings s = model_->settings();
       const std::string problem = set_live_parameter(s, c.text, c.value);
       if (!problem.empty()) {
+        rejected_key_ = c.text;
+        rejected_message_ = problem;
         log_.add("set " + c.text + "=" + c.value + " rejected: " + problem + by);
         break;
       }
@@ -233,8 +270,11 @@ void SimWorker::apply(SimCommand& c) {
         model_->apply(s);
         numerical_error_.reset();
         numerical_message_.clear();
+        rejected_key_.clear();
+        rejected_message_.clear();
         log_.add("set " + c.text + "=" + c.value + by);
       } catch (const std::exception& e) {
+        note_rejection(e);
         log_.add("set " + c.text + "=" + c.value + " rejected: " + e.what() + by);
       }
       break;
@@ -245,7 +285,7 @@ void SimWorker::apply(SimCommand& c) {
       log_.add("speed " + describe_speed(speed_) + by);
       break;
     case Kind::kMouseSpring:
-      model_->set_mouse_spring(c.spring);
+      mouse_stiffness_ = model_->set_mouse_spring(c.spring);
       // dragging sends a command per frame: log only grabbing and releasing
       if (!c.spring) log_.add("mouse spring released" + by);
       else if (c.count == 1) {
@@ -255,7 +295,8 @@ void SimWorker::apply(SimCommand& c) {
       break;
     case Kind::kRecord:
       record_interval_ = c.number > 0.0 ? c.number : 0.0;
-      next_record_ = model_->time();
+      record_start_ = model_->time();
+    record_marks_ = 0;
       log_.add(record_interval_ > 0.0 ? "recording every " + std::to_string(record_interval_) + " s" + by
                                       : "recording stopped" + by);
       // the first frame is the state at the moment recording starts
@@ -267,9 +308,12 @@ void SimWorker::apply(SimCommand& c) {
 }
 
 void SimWorker::record_if_due() {
-  if (record_interval_ <= 0.0 || model_->time() + 1e-12 * record_interval_ < next_record_) return;
-  // frames at fixed simulated times: one per crossed interval mark
-  while (next_record_ <= model_->time() + 1e-12 * record_interval_) next_record_ += record_interval_;
+  // frames at fixed simulated times: the first step at or after each mark start + k interval
+  // (marks counted, not summed, so they do not drift), one frame however many marks a step crosses
+  const auto mark = [this](long k) { return record_start_ + static_cast<double>(k) * record_interval_; };
+  const double now = model_->time() + 1e-9 * record_interval_;
+  if (record_interval_ <= 0.0 || now < mark(record_marks_)) return;
+  while (mark(record_marks_) <= now) ++record_marks_;
   Snapshot frame;
   model_->fill_snapshot(frame);
   std::unique_lock<std::mutex> lock(record_mutex_);

@@ -37,7 +37,8 @@ class SteppedModel {
   virtual void fill_snapshot(Snapshot& out) const = 0;
   virtual LiveSettings settings() const = 0;
   virtual void apply(const LiveSettings& settings) = 0;         // may throw InputError
-  virtual void set_mouse_spring(const std::optional<MouseSpring>& spring) = 0;
+  // returns the spring's total stiffness [N/m] (0: nothing held)
+  virtual double set_mouse_spring(const std::optional<MouseSpring>& spring) = 0;
 };
 
 // How the worker gets scenes and models: load reads a file (throws InputError), build makes a
@@ -75,6 +76,10 @@ struct WorkerStatus {
   std::string load_error;             // the last failed reload or switch; cleared by a good one
   long commands_applied = 0;
   bool recording = false;
+  double mouse_stiffness = 0.0;       // of the mouse spring held now [N/m]; 0: none
+  // the last refused live setting (its key as set_live_parameter names it, "" when it is not
+  // one field's) and why; cleared by an accepted change or a rebuilt model
+  std::string rejected_key, rejected_message;
 };
 
 class SimWorker {
@@ -136,7 +141,11 @@ class SimWorker {
   long rate_steps_ = 0;
   double rate_sim_ = 0.0;
   double steps_per_second_ = 0.0, sim_per_second_ = 0.0;
-  double record_interval_ = 0.0, next_record_ = 0.0;
+  double record_interval_ = 0.0, record_start_ = 0.0;
+  long record_marks_ = 0;          // marks already recorded
+  double mouse_stiffness_ = 0.0;   // of the spring held by the model (0: none)
+  std::string rejected_key_, rejected_message_;
+  void note_rejection(const std::exception& e);
   long generation_ = 0, scene_generation_ = 0, applied_ = 0;
   std::optional<NumericalDiagnostic> numerical_error_;
   std::string numerical_message_, load_error_;

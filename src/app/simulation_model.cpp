@@ -23,7 +23,9 @@ class SimulationModel final : public SteppedModel {
   void fill_snapshot(Snapshot& out) const override { sim_.fill_snapshot(out); }
   LiveSettings settings() const override { return sim_.settings(); }
   void apply(const LiveSettings& settings) override { sim_.apply(settings); }
-  void set_mouse_spring(const std::optional<MouseSpring>& spring) override { sim_.set_mouse_spring(spring); }
+  double set_mouse_spring(const std::optional<MouseSpring>& spring) override {
+    return sim_.set_mouse_spring(spring);
+  }
 
  private:
   Simulation sim_;

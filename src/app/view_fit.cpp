@@ -67,4 +67,10 @@ bool grow_framing(Framing& framing, const Snapshot& snapshot, double margin) {
   return true;
 }
 
+Camera picture_camera(const Camera& window_camera, int height, int left_inset) {
+  Camera camera = window_camera;
+  camera.center.x() += 0.5 * left_inset * camera.view_height / std::max(1, height);
+  return camera;
+}
+
 }  // namespace periflex

@@ -20,6 +20,10 @@ Camera fit_camera_beside_panels(const Bounds& box, int width, int height, int le
 // The same for framing_bounds(snapshot): the camera the GUI starts with.
 Camera fit_camera_beside_panels(const Snapshot& snapshot, int width, int height, int left_inset);
 
+// The camera of a picture without the panels (a screenshot, a recorded frame) of `height`
+// pixels: the window's camera moved so what it shows beside the panels is centred.
+Camera picture_camera(const Camera& window_camera, int height, int left_inset = kPanelWidth);
+
 // A view that grows to keep a moving scene in sight: everything seen so far, and the box shown
 // (what was seen, with a margin once it has grown, so it is not re-framed every frame).
 struct Framing {

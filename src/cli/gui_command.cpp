@@ -39,9 +39,30 @@ bool ffmpeg_available() {
   return false;
 }
 
+bool parse_window_size(const std::string& text, int& width, int& height) {
+  // digits 'x' digits, nothing else
+  const size_t x = text.find_first_of("xX");
+  if (x == std::string::npos || x == 0 || x + 1 >= text.size()) return false;
+  const std::string w = text.substr(0, x), h = text.substr(x + 1);
+  const auto digits = [](const std::string& s) { return s.size() <= 5 && s.find_first_not_of("0123456789") == std::string::npos; };
+  if (!digits(w) || !digits(h)) return false;
+  width = std::atoi(w.c_str());
+  height = std::atoi(h.c_str());
+  return width >= 640 && height >= 480 && width <= 16384 && height <= 16384;
+}
+
+std::string parse_window_size_check(const std::string& text) {
+  int w = 0, h = 0;
+  if (parse_window_size(text, w, h)) return "";
+  return "'" + text + "' is not a window size WxH (640x480 to 16384x16384, e.g. 1024x768)";
+}
+
 int gui_command(const GuiCommandOptions& options) {
 #ifdef PERIFLEX_WITH_GUI
   GuiOptions gui;
+  if (!options.size.empty() && !parse_window_size(options.size, gui.width, gui.height)) {
+    throw InputError({"command line", 0, 0, "--size"}, parse_window_size_check(options.size));
+  }
   gui.scene_path = options.scene_path;
   gui.overrides = options.overrides;
   gui.frames = options.frames;

@@ -13,7 +13,14 @@ struct GuiCommandOptions {
   std::string screenshot;  // PNG of the last frame
   std::string script;      // timed actions for scripted runs
   int samples = -1;        // multisampling of the window; -1: chosen by scene size
+  std::string size;        // "WxH" window size; empty: 1280x800
 };
+
+// Parses "WxH" (640 <= W, 480 <= H, both at most 16384) into width and height; false when it is
+// not that.
+bool parse_window_size(const std::string& text, int& width, int& height);
+// The same as a command-line check: "" when valid, else what is wrong.
+std::string parse_window_size_check(const std::string& text);
 
 int gui_command(const GuiCommandOptions& options);
 

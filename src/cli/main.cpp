@@ -93,6 +93,8 @@ int run_main(int argc, char** argv) {
   gui_cmd->add_option("--samples", gui.samples,
                       "Multisamples of the window, 1 = off (default: 4, or off for 100k particles and more)")
       ->check(CLI::Range(1, 16));
+  gui_cmd->add_option("--size", gui.size, "Window size WxH in screen pixels (default 1280x800, at least 640x480)")
+      ->check(CLI::Validator(parse_window_size_check, "WxH"));
 
   StudyOptions study;
   auto* study_cmd = add_study_subcommand(app, study);

@@ -339,18 +339,24 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
     external += flex->external_power(q, qd, t);
   }
   if (mouse_) {
-    const bool particle = mouse_->particle_coordinate >= 0;
-    const int c = mouse_->particle_coordinate;
-    const Vec2 p = particle ? Vec2(q[c], q[c + 1]) : mouse_->point.position(q);
-    const Vec2 v = particle ? Vec2(qd[c], qd[c + 1]) : mouse_->point.velocity(q, qd);
-    const Vec2 force = mouse_->stiffness * (mouse_->target - p) - mouse_->damping * v;
-    if (particle) {
+    const Vec2 target = mouse_->target_at(t);
+    if (mouse_->point.body >= 0) {
+      const Vec2 p = mouse_->point.position(q);
+      const Vec2 v = mouse_->point.velocity(q, qd);
+      const Vec2 force = mouse_->stiffness * (target - p) - mouse_->damping * v;
+      mouse_->point.add_force(g_, force, 1.0, q);
+      external += force.dot(v);
+    }
+    // a held patch of particles: each towards the target plus its offset
+    for (size_t k = 0; k < mouse_->particle_coordinates.size(); ++k) {
+      const int c = mouse_->particle_coordinates[k];
+      const Vec2 p(q[c], q[c + 1]), v(qd[c], qd[c + 1]);
+      const Vec2 force = mouse_->particle_stiffness[k] * (target + mouse_->offsets[k] - p) -
+                         mouse_->particle_damping[k] * v;
       g_[c] += force.x();
       g_[c + 1] += force.y();
-    } else {
-      mouse_->point.add_force(g_, force, 1.0, q);
+      external += force.dot(v);
     }
-    external += force.dot(v);
   }
   force_seconds_ += since(start);
 

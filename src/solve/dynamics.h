@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,12 +17,26 @@
 
 namespace periflex {
 
-// A spring from a body point or a particle to a point the mouse holds (resolved indices).
+// A spring from a body point, or from a patch of particles, to a point the mouse holds
+// (resolved indices). Each held particle is pulled towards the target plus its offset (its place
+// relative to the grabbed particle at the grab), so the patch moves as one without collapsing.
 struct MouseSpringForce {
-  BodyPoint point;               // rigid grab point (point.body >= 0), or
-  int particle_coordinate = -1;  // index of a particle's x in q
+  BodyPoint point;                        // rigid grab point (point.body >= 0), or
+  std::vector<int> particle_coordinates;  // index of each held particle's x in q
+  std::vector<Vec2> offsets;              // per held particle
+  std::vector<double> particle_stiffness, particle_damping;  // per held particle
   Vec2 target = Vec2::Zero();
-  double stiffness = 0.0, damping = 0.0;
+  double stiffness = 0.0, damping = 0.0;  // rigid point; for a patch, the sums over it
+  int grabbed_body = -1, grabbed_particle = -1;  // what was grabbed (MouseSpring's indices)
+  // The point pulled towards travels from `from` (where it was at time `since`) to `target` at
+  // most at `speed` [m/s] (0: at once), so a pointer that jumps does not fling a stiff patch.
+  Vec2 from = Vec2::Zero();
+  double since = 0.0, speed = 0.0;
+  Vec2 target_at(double t) const {
+    const Vec2 way = target - from;
+    const double length = way.norm(), reach = speed * std::max(0.0, t - since);
+    return speed <= 0.0 || reach >= length ? target : Vec2(from + way * (reach / length));
+  }
 };
 
 class Dynamics final : public OdeSystem {
@@ -44,6 +59,8 @@ class Dynamics final : public OdeSystem {
   void set_condense_attachments(bool enabled) { condense_ = enabled; }
   const CorrectionDef& correction() const { return correction_; }
   void set_mouse_spring(const std::optional<MouseSpringForce>& spring) { mouse_ = spring; }
+  // The spring set (to move its target without resolving it again).
+  std::optional<MouseSpringForce>& mouse_spring() { return mouse_; }
 
   // OdeSystem: accelerations and the dissipated / external / driver powers.
   void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd,

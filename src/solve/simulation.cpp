@@ -666,41 +666,95 @@ void Simulation::apply(const LiveSettings& settings) {
   s.build_info();
 }
 
-void Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
+double Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
   Impl& s = *impl_;
   const SystemModel& m = *s.model;
   if (!spring) {
     s.dynamics->set_mouse_spring(std::nullopt);
-    return;
+    return 0.0;
   }
+  // the same grab again: a drag moves the target only (no new patch, no integrator restart)
+  std::optional<MouseSpringForce>& held = s.dynamics->mouse_spring();
+  if (held && spring->stiffness <= 0.0 && held->grabbed_body == spring->body &&
+      held->grabbed_particle == spring->particle) {
+    held->from = held->target_at(s.time);
+    held->since = s.time;
+    held->target = spring->target;
+    return held->stiffness;
+  }
+
+  // How stiff: the held part follows the pointer at an angular frequency omega, so its
+  // stiffness is (held mass) omega^2 and its damping 0.7 of critical, 1.4 (held mass) omega.
+  // Explicit stepping stays stable with omega dt <= 0.3 and, for particles, with the bonds'
+  // highest frequency (2 / critical step) and the spring's together under 2 / dt.
+  const double dt = s.live.dt;
+  double omega_stable = dt > 0.0 ? 0.3 / dt : 1e300;
+  constexpr double kDampingRatio = 0.7;
   MouseSpringForce force;
   force.target = spring->target;
-  double grabbed = 0.0;
+  force.grabbed_body = spring->body;
+  force.grabbed_particle = spring->particle;
   if (spring->body >= 0 && spring->body < static_cast<int>(m.bodies.size())) {
+    // a rigid body settles on the pointer within about a twentieth of the run (2 Hz over 10 s)
+    const double end = s.scene.solver.end_time;
+    const double omega = std::min(end > 0.0 ? 2.0 * kPi * 20.0 / end : 2.0 * kPi * 2.0, omega_stable);
+    const double mass = m.bodies[spring->body].mass > 0.0 ? m.bodies[spring->body].mass : 1.0;
     force.point = BodyPoint{spring->body, spring->local_point};
-    grabbed = m.bodies[spring->body].mass;
+    force.stiffness = spring->stiffness > 0.0 ? spring->stiffness : mass * omega * omega;
+    force.damping = 2.0 * kDampingRatio * std::sqrt(force.stiffness * mass);
   } else if (spring->particle >= 0) {
     // snapshot order: the flexible bodies' particles concatenated
     int first = 0;
     for (const auto& flex : m.flex_bodies) {
-      if (spring->particle < first + flex->particle_count()) {
-        force.particle_coordinate = flex->coordinate_offset() + 2 * (spring->particle - first);
-        for (double pm : flex->masses()) grabbed += pm;
-        break;
+      if (spring->particle >= first + flex->particle_count()) {
+        first += flex->particle_count();
+        continue;
       }
-      first += flex->particle_count();
+      // The patch within one horizon of the grabbed particle (as it lies now): one particle
+      // alone is held back by its bonds and barely moves; a patch as wide as the bonds' reach
+      // pulls the body as a finger would. It is held as stiffly as the step allows, since a
+      // softer grip could not compete with the bonds around it and the body would not deform.
+      const int offset = flex->coordinate_offset();
+      const Eigen::VectorXd& q = s.state.q;
+      const Vec2 grabbed(q[offset + 2 * (spring->particle - first)], q[offset + 2 * (spring->particle - first) + 1]);
+      const double reach = flex->horizon();
+      // the patch starts where it is and follows the pointer at most one horizon per 200 steps
+      force.from = grabbed;
+      force.since = s.time;
+      force.speed = dt > 0.0 ? reach / (200.0 * dt) : 0.0;
+      double omega = omega_stable;
+      if (s.critical_step > 0.0 && dt > 0.0) {
+        const double ratio = std::min(1.0, dt / s.critical_step);
+        omega = std::min(omega, std::sqrt(1.0 - ratio * ratio) / dt);
+      }
+      const std::vector<double>& masses = flex->masses();
+      for (int i = 0; i < flex->particle_count(); ++i) {
+        const Vec2 p(q[offset + 2 * i], q[offset + 2 * i + 1]);
+        if ((p - grabbed).squaredNorm() > reach * reach) continue;
+        const double k = masses[i] * omega * omega;
+        force.particle_coordinates.push_back(offset + 2 * i);
+        force.offsets.push_back(p - grabbed);
+        force.particle_stiffness.push_back(k);
+        force.particle_damping.push_back(2.0 * kDampingRatio * masses[i] * omega);
+        force.stiffness += k;
+        force.damping += force.particle_damping.back();
+      }
+      if (spring->stiffness > 0.0 && force.stiffness > 0.0) {
+        // a given total stiffness, shared in proportion to the masses
+        const double scale = spring->stiffness / force.stiffness;
+        for (double& k : force.particle_stiffness) k *= scale;
+        for (double& c : force.particle_damping) c *= std::sqrt(scale);
+        force.stiffness = spring->stiffness;
+      }
+      break;
     }
-    if (force.particle_coordinate < 0) return;
+    if (force.particle_coordinates.empty()) return 0.0;
   } else {
-    return;
+    return 0.0;
   }
-  // 2 Hz for the mass grabbed (the whole flexible body for a particle), 0.7 of critical damping
-  const double omega = 2.0 * kPi * 2.0;
-  if (grabbed <= 0.0) grabbed = 1.0;
-  force.stiffness = spring->stiffness > 0.0 ? spring->stiffness : grabbed * omega * omega;
-  force.damping = 1.4 * std::sqrt(force.stiffness * grabbed);
   s.dynamics->set_mouse_spring(force);
   s.integrator->reset();
+  return force.stiffness;
 }
 
 }  // namespace periflex

@@ -62,7 +62,8 @@ struct MouseSpring {
   int particle = -1;                // particle index (snapshot order), or -1
   Vec2 local_point = Vec2::Zero();  // body-fixed grab point (rigid)
   Vec2 target = Vec2::Zero();       // global
-  double stiffness = 0.0;           // 0: chosen from the mass grabbed (2 Hz for that mass)
+  // 0: chosen from the mass held and the scene's time scales (Simulation::set_mouse_spring)
+  double stiffness = 0.0;
 };
 
 class Simulation {
@@ -98,7 +99,12 @@ class Simulation {
 
   LiveSettings settings() const;
   void apply(const LiveSettings& settings);
-  void set_mouse_spring(const std::optional<MouseSpring>& spring);
+  // Holds (or, with nullopt, releases) what the mouse grabbed. A rigid body is pulled at its
+  // grab point, settling on the target within about a twentieth of the end time; a particle is
+  // held with the particles within one horizon of it, each towards the target plus its offset,
+  // as stiffly as the explicit step allows (so a drag deforms and can tear the body). The same
+  // grab again only moves the target. Returns the total stiffness [N/m] (0: nothing held).
+  double set_mouse_spring(const std::optional<MouseSpring>& spring);
 
   // Wall-clock seconds spent in each part of stepping so far, for profiling reports.
   struct Timing { double forces = 0, constraints = 0, integration = 0, fracture = 0; };

@@ -74,7 +74,7 @@ class FakeModel final : public SteppedModel {
     settings_ = s;
     log_.events.push_back("apply " + std::to_string(static_cast<long>(s.bond_damping)));
   }
-  void set_mouse_spring(const std::optional<MouseSpring>&) override {}
+  double set_mouse_spring(const std::optional<MouseSpring>&) override { return 0.0; }
 
  private:
   FakeLog& log_;
@@ -168,6 +168,49 @@ TEST(SimWorker, PausedWorkerTakesExactlyTheStepsAsked) {
   ASSERT_TRUE(worker.update_snapshot());
   EXPECT_EQ(worker.snapshot().step, 5);
   EXPECT_NEAR(worker.snapshot().time, 5e-3, 1e-15);  // five sums of 1e-3: rounding only
+  worker.stop();
+}
+
+TEST(SimWorker, StepToTimeStopsAtTheFirstStepAtOrAfterIt) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 3e-3), "a.toml", {}, events);
+  worker.start(false, 1.0);
+  // 0.1 s is 33.3 steps of 3 ms: the 34th is the first at or after it
+  SimCommand to = SimCommand::make(SimCommand::Kind::kStepTo, "test");
+  to.number = 0.1;
+  worker.send(to);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 34; }));
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(worker.status().step, 34);
+  EXPECT_FALSE(worker.status().running);
+  // a time already passed takes no step; a whole number of steps lands on it
+  to.number = 0.05;
+  worker.send(to);
+  to.number = 34 * 3e-3 + 6e-3;
+  worker.send(to);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 36; }));
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(worker.status().step, 36);
+  worker.stop();
+}
+
+TEST(SimWorker, RefusedSettingIsReportedWithItsKeyUntilOneIsAccepted) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+  worker.start(false, 1.0);
+  SimCommand bad = SimCommand::make(SimCommand::Kind::kSetParameter, "test");
+  bad.text = "dt";
+  bad.value = "-1";
+  worker.send(bad);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return !s.rejected_message.empty(); }));
+  EXPECT_EQ(worker.status().rejected_key, "dt");
+  SimCommand good = bad;
+  good.value = "2e-3";
+  worker.send(good);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.rejected_message.empty(); }));
+  EXPECT_EQ(worker.status().settings.dt, 2e-3);
   worker.stop();
 }
 

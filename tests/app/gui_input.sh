@@ -1,0 +1,288 @@
+#!/usr/bin/env bash
+# The window driven as a person drives it: real X input events (xdotool moves the pointer onto a
+# control and clicks, presses keys, drags with the left button) into `periflex gui` under Xvfb.
+# The program tells where its controls are and what its state is through the file named by
+# PERIFLEX_GUI_WIDGETS (src/app/widget_dump.h); the clicks themselves go through the X server and
+# GLFW like anyone's. Every case ends with Ctrl+Q and requires the program to exit on its own
+# within a time limit, so a frozen window fails the test instead of hanging it.
+#
+# Usage (inside an X display, e.g. under xvfb-run):
+#   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
+# CASE: record_png | record_mp4 | keys | damping | refusal | spring
+set -uo pipefail
+
+case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
+work="$out/$case_name"
+rm -rf "$work"
+mkdir -p "$work"
+widgets="$work/widgets.txt"
+log="$work/stderr.txt"
+pid=""
+
+fail() {
+  echo "FAIL ($case_name): $*" >&2
+  [[ -f "$widgets" ]] && sed 's/^/  widgets: /' "$widgets" >&2
+  [[ -f "$log" ]] && tail -n 20 "$log" | sed 's/^/  log: /' >&2
+  if [[ -n "$pid" ]] && kill -0 "$pid" 2>/dev/null; then kill -9 "$pid" 2>/dev/null; fi
+  exit 1
+}
+
+# value of a state line (`state KEY VALUE...`), all its words
+state() { awk -v k="$1" '$1 == "state" && $2 == k { $1 = ""; $2 = ""; sub(/^ +/, ""); print }' "$widgets" 2>/dev/null; }
+# the centre of a control, "X Y" in window coordinates
+centre() {
+  awk -v k="$1" '$1 == "widget" && $2 == k { printf "%d %d\n", ($3 + $5) / 2, ($4 + $6) / 2 }' "$widgets" 2>/dev/null
+}
+
+# waits up to SECONDS for a shell condition to hold; fails with MESSAGE otherwise
+wait_until() {
+  local seconds=$1 message=$2
+  shift 2
+  local end=$((SECONDS + seconds))
+  until eval "$*"; do
+    kill -0 "$pid" 2>/dev/null || fail "the program ended early while waiting for: $message"
+    ((SECONDS < end)) || fail "timed out after ${seconds}s waiting for: $message (is the window frozen?)"
+    sleep 0.1
+  done
+}
+
+# moves the pointer onto a control and clicks it with the left button
+click() {
+  local name=$1 xy bottom height turns=0
+  # a control below the window's edge (not shown, or partly): scroll the panel column with the
+  # wheel until it is whole on screen
+  read -r _ height < <(state window)
+  while bottom=$(awk -v k="$name" '$1 == "widget" && $2 == k { print $6 }' "$widgets") &&
+        [[ -z "$bottom" ]] || ((bottom > height - 2)); do
+    ((turns++ < 40)) || fail "control $name stays below the window's edge"
+    xdotool mousemove --window "$window" 100 $((height / 2)) click 5 || fail "xdotool wheel"
+    sleep 0.2
+  done
+  xy=$(centre "$name")
+  xdotool mousemove --window "$window" ${xy% *} ${xy#* } || fail "xdotool mousemove"
+  sleep 0.2
+  xdotool click 1 || fail "xdotool click"
+  sleep 0.2
+}
+
+# world point to window coordinates through the program's camera
+to_window() {
+  state world_to_window | awk -v X="$1" -v Y="$2" '{ printf "%d %d\n", $1 * X + $2, $3 * Y + $4 }'
+}
+
+start() {
+  local scene=$1
+  shift
+  PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" gui "$scenes/$scene" "$@" 2>"$log" &
+  pid=$!
+  wait_until 60 "the window's first frame" '[[ -n "$(state running)" ]]'
+  window=$(xdotool search --sync --pid "$pid" 2>/dev/null | head -n 1)
+  [[ -n "$window" ]] || fail "no window of process $pid"
+  xdotool windowfocus --sync "$window" 2>/dev/null || xdotool windowfocus "$window" || true
+}
+
+# Ctrl+Q, then the program must end on its own with exit code 0 within 30 s
+quit() {
+  # the program may be gone before the keys are let go: their release is not checked
+  xdotool keydown ctrl q || fail "xdotool keydown ctrl+q"
+  sleep 0.1
+  xdotool keyup q ctrl 2>/dev/null
+  local end=$((SECONDS + 30))
+  while kill -0 "$pid" 2>/dev/null; do
+    ((SECONDS < end)) || fail "the program did not exit within 30 s of Ctrl+Q (frozen window)"
+    sleep 0.1
+  done
+  wait "$pid"
+  local code=$?
+  pid=""
+  ((code == 0)) || fail "exit code $code"
+}
+
+# key presses held for 0.1 s each, as a hand holds them (Dear ImGui 1.86 reads the keys held
+# at each frame, so a press and release within one frame would go unseen); KEY or MOD+KEY
+key() {
+  local k
+  for k in "$@"; do
+    xdotool keydown ${k//+/ } && sleep 0.1 && xdotool keyup $(echo ${k//+/ } | awk '{ for (i = NF; i > 0; --i) printf "%s ", $i }') ||
+      fail "xdotool key $k"
+    sleep 0.1
+  done
+  sleep 0.2
+}
+# replaces the text of the active field
+retype() {
+  key ctrl+a BackSpace
+  xdotool type --delay 30 "$1" || fail "typing $1"
+  sleep 0.2
+}
+
+# floating-point comparison through awk: holds "A OP B"
+holds() { awk "BEGIN { exit !($1) }"; }
+
+# recording from the Export panel: open it, name the target, Start, let frames come, Stop
+record() {
+  local target=$1
+  shift
+  # a run that does not reach its end (and pause) while it records
+  start flexible_pendulum.toml --set solver.end_time=1000 "$@"
+  click export_header
+  click record_path
+  retype "$target"
+  key Return
+  click record_interval
+  retype 0.02
+  key Return
+  click start_recording
+  wait_until 30 "recording to start (Stop recording shown)" '[[ -n "$(centre stop_recording)" ]]'
+  # the swinging pendulum would make the view grow: not while recording
+  local view
+  view=$(state world_to_window)
+  wait_until 60 "at least 5 recorded frames" '(( $(state frames_written) >= 5 ))'
+  sleep 1
+  [[ "$(state world_to_window)" == "$view" ]] || fail "the view changed during the recording"
+  click stop_recording
+  wait_until 30 "recording to stop (Start recording shown again)" \
+    '[[ "$(state recording)" == 0 && -n "$(centre start_recording)" ]]'
+  quit
+  recorded=$(sed -n 's/.*recorded \([0-9]*\) frames.*/\1/p' "$log" | tail -n 1)
+  [[ -n "$recorded" ]] && ((recorded >= 5)) || fail "the log reports no recording of 5 frames or more"
+}
+
+case "$case_name" in
+  record_png)
+    record "$work/frames"
+    count=$(ls "$work/frames" | grep -c '^frame_[0-9]*\.png$')
+    ((count == recorded)) || fail "$count PNG files for $recorded frames recorded"
+    for f in "$work"/frames/frame_*.png; do
+      [[ "$(head -c 8 "$f" | od -An -tx1 | tr -d ' \n')" == 89504e470d0a1a0a ]] || fail "$f is not a PNG"
+    done
+    if [[ -n "$png_check" ]]; then
+      "$png_check" "$work/frames/frame_000003.png" --overlay || fail "frame 3 is not a picture with the overlay"
+    fi
+    ;;
+  record_mp4)
+    # in a 1024x768 window (a projector): the panel column scrolls to the buttons
+    record "$work/movie.mp4" --size 1024x768
+    [[ "$(state window)" == "1024 768" ]] || fail "window $(state window), asked 1024x768"
+    frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
+             -of csv=p=0 "$work/movie.mp4") || fail "ffprobe cannot read the movie"
+    ((frames == recorded)) || fail "the movie has $frames frames, the window recorded $recorded"
+    size=$(ffprobe -v error -select_streams v:0 -show_entries stream=width,height -of csv=p=0:s=x "$work/movie.mp4")
+    [[ "$size" == 1024x768 ]] || fail "movie frames of $size, the window is 1024x768"
+    ;;
+  keys)
+    start flexible_pendulum.toml
+    # the pointer over the picture, away from the pendulum
+    xdotool mousemove --window "$window" 1200 100
+    wait_until 10 "running at start" '[[ "$(state running)" == 1 ]]'
+    key space
+    wait_until 10 "Space to pause" '[[ "$(state running)" == 0 ]]'
+    sleep 0.3
+    s0=$(state step)
+    key Right
+    wait_until 10 "Right to take one step" '(( $(state step) == s0 + 1 ))'
+    key Right
+    key Right
+    wait_until 10 "two more steps" '(( $(state step) == s0 + 3 ))'
+    [[ "$(state running)" == 0 ]] || fail "stepping resumed the run"
+    key BackSpace
+    wait_until 10 "Backspace to reset to step 0" '(( $(state step) == 0 ))'
+    holds "$(state time) == 0" || fail "time after reset is $(state time)"
+    # Step N: 250 steps at once
+    click step_count
+    retype 250
+    key Return
+    click step_n
+    wait_until 20 "Step N to take 250 steps" '(( $(state step) == 250 ))'
+    # Step to t: 0.01013 s is not a whole number of steps of 2.5e-5 s: the first step after it
+    click step_to_time
+    retype 0.01013
+    key Return
+    click step_to
+    wait_until 20 "Step to t to reach step 406" '(( $(state step) == 406 ))'
+    holds "$(state time) >= 0.01013 && $(state time) < 0.01013 + 2.5e-5" || fail "time $(state time) after Step to t"
+    sleep 0.5
+    (( $(state step) == 406 )) && [[ "$(state running)" == 0 ]] || fail "stepping went on past the time asked"
+    # the pointer back over the picture for the keys
+    xdotool mousemove --window "$window" 1200 100
+    key space
+    wait_until 10 "Space to run again" '[[ "$(state running)" == 1 ]] && (( $(state step) > 10 ))'
+    quit
+    ;;
+  damping)
+    start flexible_pendulum.toml
+    before=$(state bond_damping)
+    click bond_damping
+    retype 0.25
+    # not applied before Enter
+    holds "$(state bond_damping) == $before" || fail "bond damping changed before Enter"
+    key Return
+    wait_until 10 "bond damping 0.25 applied" 'holds "$(state bond_damping) == 0.25"'
+    grep -q "settings: .*(ui)" "$log" || fail "the change is not in the log"
+    [[ "$(state running)" == 1 ]] || fail "the run stopped"
+    quit
+    ;;
+  refusal)
+    # a time step above the safe limit of the notched plate: refused, and said so under the field
+    start notched_plate.toml
+    dt0=$(state dt)
+    click dt
+    retype 2e-6
+    key Return
+    wait_until 10 "the refusal under the dt field" '[[ -n "$(centre dt_refusal)" ]]'
+    holds "$(state dt) == $dt0" || fail "dt changed to $(state dt)"
+    dt_bottom=$(awk '$1 == "widget" && $2 == "dt" { print $6 }' "$widgets")
+    refusal_top=$(awk '$1 == "widget" && $2 == "dt_refusal" { print $4 }' "$widgets")
+    ((refusal_top >= dt_bottom && refusal_top < dt_bottom + 30)) ||
+      fail "the refusal (top $refusal_top) is not right under the dt field (bottom $dt_bottom)"
+    # an accepted value clears it
+    click dt
+    retype 2e-7
+    key Return
+    wait_until 10 "dt 2e-7 applied, the refusal gone" 'holds "$(state dt) == 2e-7" && [[ -z "$(centre dt_refusal)" ]]'
+    quit
+    ;;
+  spring)
+    start notched_plate.toml
+    # once the view is framed (the same camera twice, 0.5 s apart), aim at a particle in the
+    # upper right of the plate
+    mapping=""
+    wait_until 20 "a steady view" '[[ -n "$mapping" && "$mapping" == "$(state world_to_window)" ]] || { mapping=$(state world_to_window); sleep 0.5; false; }'
+    read -r x y < <(to_window 0.025 0.012)
+    xdotool mousemove --window "$window" "$x" "$y"
+    wait_until 10 "a particle under the pointer" '[[ -n "$(state pointed)" ]]'
+    # onto that particle's centre, so the nearest one stays the same while it jitters
+    read -r i0 px0 py0 < <(state pointed)
+    read -r x y < <(to_window "$px0" "$py0")
+    xdotool mousemove --window "$window" "$x" "$y"
+    sleep 0.3
+    read -r i0 px0 py0 < <(state pointed)
+    sleep 1.5
+    read -r i1 px1 py1 < <(state pointed)
+    [[ "$i0" == "$i1" ]] || fail "the pointed particle changed without moving the pointer"
+    t1=$(state time)
+    # its motion over 1.5 s of the run without the spring: the noise the drag must beat
+    noise=$(awk -v a="$px0" -v b="$py0" -v c="$px1" -v d="$py1" 'BEGIN { print sqrt((c-a)^2 + (d-b)^2) }')
+    xdotool mousedown 1
+    wait_until 10 "a grabbed particle" '[[ -n "$(state grabbed)" ]]'
+    for dy in 10 20 30 40 50 60; do
+      xdotool mousemove --window "$window" "$x" $((y - dy))
+      sleep 0.05
+    done
+    sleep 1.5
+    read -r ig gx gy < <(state grabbed)
+    t2=$(state time)
+    xdotool mouseup 1
+    [[ "$ig" == "$i1" ]] || fail "grabbed particle $ig, pointed at $i1"
+    moved=$(awk -v a="$px1" -v b="$py1" -v c="$gx" -v d="$gy" 'BEGIN { print sqrt((c-a)^2 + (d-b)^2) }')
+    echo "particle $ig: noise $noise m over 1.5 s, moved $moved m by the drag (t $t1 .. $t2)"
+    holds "$moved > 10 * $noise" || fail "moved $moved m, not 10x the noise $noise m"
+    holds "$moved > 5e-4" || fail "moved $moved m: less than half a grid spacing"
+    wait_until 10 "the release" '[[ -z "$(state grabbed)" ]]'
+    quit
+    ;;
+  *)
+    fail "unknown case"
+    ;;
+esac
+echo "ok ($case_name)"

@@ -8,6 +8,7 @@
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "cli/frame_sink.h"
 #include "cli/interrupt.h"
@@ -34,12 +35,20 @@ double seconds_since(Clock::time_point start) {
 }
 
 // Times at which rows or frames fall due: k * interval exactly, each reached by a step that
-// lands on it (Simulation::step_toward), whatever dt is.
+// lands on it (Simulation::step_toward), whatever dt is. An interval shorter than the step would
+// shorten every step, so it means "after every step" instead (at the step's own time).
 struct Schedule {
   double interval = 0.0;  // 0: never
   long next_index = 0;
+  bool every_step(double dt) const { return interval > 0 && interval < dt * (1 - 1e-9); }
+  // the next instant the run must land on, or none (+infinity)
+  double landing(double dt) const {
+    return interval > 0 && !every_step(dt) ? next_time() : std::numeric_limits<double>::infinity();
+  }
   double next_time() const { return static_cast<double>(next_index) * interval; }
-  bool due(double t, double dt) const { return interval > 0 && time_reached(t, next_time(), dt); }
+  bool due(double t, double dt) const {
+    return interval > 0 && (every_step(dt) || time_reached(t, next_time(), dt));
+  }
   // the first k * interval after t (computed, not counted: no loop over skipped times)
   void advance_past(double t, double dt) {
     const double k = std::floor((t + time_tolerance(dt, t)) / interval) + 1.0;
@@ -196,9 +205,7 @@ int run_command(const RunOptions& requested) {
         break;
       }
       // the next instant something is due: the end, a row, a frame or the screenshot
-      double target = end_time;
-      if (rows.interval > 0) target = std::min(target, rows.next_time());
-      if (frame_times.interval > 0) target = std::min(target, frame_times.next_time());
+      double target = std::min({end_time, rows.landing(dt), frame_times.landing(dt)});
       if (snapshot_time) target = std::min(target, *snapshot_time);
       const auto step_start = Clock::now();
       const double cpu_start = thread_cpu_seconds();

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "cli/run_option_checks.h"
 #include "core/error.h"
 
 #ifdef PERIFLEX_WITH_GUI
@@ -41,6 +42,7 @@ bool ffmpeg_available() {
 
 int gui_command(const GuiCommandOptions& options) {
 #ifdef PERIFLEX_WITH_GUI
+  check_gui_options(options);  // flags, output file and the scene's budget, before a window opens
   GuiOptions gui;
   gui.scene_path = options.scene_path;
   gui.overrides = options.overrides;

@@ -48,7 +48,7 @@ void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_option("--fps", o.fps, "Playback frame rate of the movie")->check(CLI::Range(1.0, 240.0));
   command->add_option("--snapshot-at", o.snapshot_at, "Simulated time of a single screenshot");
   command->add_option("--screenshot", o.screenshot_path, "PNG file for --snapshot-at");
-  command->add_option("--colormap", o.colormap, "Colour map (turbo, viridis, grey)");
+  command->add_option("--colormap", o.colormap, "Colour map: ember (default), grey, turbo, viridis (assets/colormaps)");
   command->add_option("--field", o.field, "Particle colour: damage, displacement, speed, strain");
 }
 

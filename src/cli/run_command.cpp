@@ -10,6 +10,7 @@
 
 #include "cli/frame_sink.h"
 #include "cli/progress_bar.h"
+#include "cli/run_option_checks.h"
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "output/atomic_file.h"
@@ -58,8 +59,7 @@ int run_command(const RunOptions& requested) {
   parse_frame_size(options);
   if (options.snapshot_at && options.screenshot_path.empty())
     throw InputError({"command line", 0, 0, "--snapshot-at"}, "needs --screenshot FILE to say where the frame goes");
-  SceneDef scene = load_scene_with_options(options.scene_path, options.overrides, options.until, options.dt,
-                                           options.integrator);
+  SceneDef scene = load_run_scene(options);  // every flag, the scene's budget and the output paths
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
   const std::string out_dir = options.out_dir.empty() ? "out/" + scene.name : options.out_dir;

@@ -1,0 +1,101 @@
+#include "scene/scene_warnings.h"
+
+#include "scene/grid_scan.h"
+#include "scene/toml_reader.h"
+
+namespace periflex {
+
+namespace {
+
+std::string point_text(const Vec2& p) { return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ")"; }
+
+std::string located(SourceLocation where, const std::string& key, const std::string& message) {
+  where.key = key;
+  return format_location(where) + ": " + message;
+}
+
+// Particles of `flex` inside every shape of `inside`.
+long particles_inside(const FlexBodyDef& flex, const std::vector<ShapeDef>& inside) {
+  return count_grid_cells(flex.shape, flex.holes, grid_frame(flex.shape, flex.grid_spacing), inside);
+}
+
+ShapeDef disc(const Vec2& center, double radius) {
+  ShapeDef s;
+  s.kind = ShapeDef::Kind::kCircle;
+  s.center = center;
+  s.radius = radius;
+  return s;
+}
+
+const FlexBodyDef* find_flex(const SceneDef& scene, const std::string& name) {
+  for (const FlexBodyDef& flex : scene.flex_bodies)
+    if (flex.name == name) return &flex;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> scene_warnings(const SceneDef& scene) {
+  std::vector<std::string> out;
+  for (const FlexBodyDef& flex : scene.flex_bodies) {
+    const double horizon = flex.horizon_ratio * flex.grid_spacing;
+    const std::string base = "flex_body." + flex.name;
+
+    // a notch cuts bonds only where particles lie within a horizon of it
+    for (size_t k = 0; k < flex.notches.size(); ++k) {
+      const NotchDef& notch = flex.notches[k];
+      ShapeDef band;
+      band.kind = ShapeDef::Kind::kBar;
+      band.p1 = notch.p1;
+      band.p2 = notch.p2;
+      band.radius = horizon;
+      if (particles_inside(flex, {band}) == 0)
+        out.push_back(located(flex.where, base + ".notches." + std::to_string(k),
+                              "warning: the notch from " + point_text(notch.p1) + " to " + point_text(notch.p2) +
+                                  " lies outside flexible body '" + flex.name + "' (no particle within a horizon of "
+                                  "it): it cuts no bond"));
+    }
+
+    // a load on no particle does nothing
+    for (const RegionLoadDef& load : flex.loads)
+      if (particles_inside(flex, {load.region}) == 0)
+        out.push_back(located(load.where, base + ".load." + load.name + ".region",
+                              "warning: load '" + load.name + "' covers no particle of flexible body '" + flex.name +
+                                  "': it does nothing"));
+  }
+
+  // a probe on a flexible body follows its nearest particle, however far
+  for (const ProbeDef& probe : scene.probes) {
+    const FlexBodyDef* flex = find_flex(scene, probe.body);
+    if (flex == nullptr) continue;
+    const double horizon = flex->horizon_ratio * flex->grid_spacing;
+    if (particles_inside(*flex, {disc(probe.point, horizon)}) == 0)
+      out.push_back(located(probe.where, "probe." + probe.name + ".point",
+                            "warning: probe '" + probe.name + "' at " + point_text(probe.point) +
+                                " is more than a horizon (" + format_number(horizon) +
+                                " m) from every particle of '" + flex->name + "'; it will follow the nearest one"));
+  }
+
+  // attachments: empty regions, and two attachments holding the same particles
+  for (size_t a = 0; a < scene.attachments.size(); ++a) {
+    const AttachmentDef& first = scene.attachments[a];
+    const FlexBodyDef* flex = find_flex(scene, first.flex_body);
+    if (flex == nullptr) continue;
+    if (particles_inside(*flex, {first.region}) == 0)
+      out.push_back(located(first.where, "attachment." + first.name + ".region",
+                            "warning: attachment '" + first.name + "' holds no particle of '" + flex->name + "'"));
+    for (size_t b = a + 1; b < scene.attachments.size(); ++b) {
+      const AttachmentDef& second = scene.attachments[b];
+      if (second.flex_body != first.flex_body) continue;
+      const long shared = particles_inside(*flex, {first.region, second.region});
+      if (shared > 0)
+        out.push_back(located(second.where, "attachment." + second.name + ".region",
+                              "warning: attachments '" + first.name + "' and '" + second.name + "' both hold " +
+                                  std::to_string(shared) + " particles of '" + flex->name +
+                                  "'; a particle held by two bodies over-constrains the model"));
+    }
+  }
+  return out;
+}
+
+}  // namespace periflex

@@ -37,8 +37,7 @@ void add_scene_options(CLI::App* command, std::vector<std::string>& overrides) {
 // Off-screen rendering options shared by `run` and the default headless recording.
 void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_flag("--render", o.render, "Render frames off-screen (EGL) while running");
-  command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default end time / 100)")
-      ->check(CLI::PositiveNumber);
+  command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default end time / 100)");
   command->add_option("--size", o.size_text, "Frame size as WxH (default 1280x720)")->type_name("WxH");
   command->add_option("--samples", o.samples,
                       "Multisamples per pixel, 1 = off (default: 4, or off for 100k particles and more)")

@@ -56,8 +56,11 @@ void check_time(const SceneDef& scene, const RunPlan& plan, SceneBudget& budget)
 
   // fixed steps: end_time / dt of them
   budget.steps = s.end_time / s.dt;
+  // blame the value the command line gave, if one did
+  const bool until_flag = scene.locate("solver.end_time").file == "command line" &&
+                          scene.locate("solver.dt").file != "command line";
   if (!adaptive && !(budget.steps <= l.max_steps))
-    refuse(scene.locate("solver.dt"), "the run would take " + figure(budget.steps) + " steps (end_time " +
+    refuse(scene.locate(until_flag ? "solver.end_time" : "solver.dt"), "the run would take " + figure(budget.steps) + " steps (end_time " +
                                           format_number(s.end_time) + " s / dt " + format_number(s.dt) +
                                           " s), more than limits.max_steps = " + figure(l.max_steps) +
                                           "; raise dt, lower end_time, or raise limits.max_steps");

@@ -43,6 +43,7 @@ long scene_size_cap() {
 std::string read_bounded(const std::string& path, long cap) {
   SourceLocation where;
   where.file = path;
+  if (path.empty()) throw InputError({"command line", 0, 0, "scene"}, "the scene file name is empty");
   const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
   if (fd < 0) throw InputError(where, std::string("cannot open the scene file: ") + std::strerror(errno));
   struct FdCloser {

@@ -1,5 +1,7 @@
 #include "scene/scene_warnings.h"
 
+#include <sstream>
+
 #include "scene/grid_scan.h"
 #include "scene/toml_reader.h"
 
@@ -7,7 +9,11 @@ namespace periflex {
 
 namespace {
 
-std::string point_text(const Vec2& p) { return "(" + format_number(p.x()) + ", " + format_number(p.y()) + ")"; }
+std::string point_text(const Vec2& p) {
+  std::ostringstream out;
+  out << '(' << format_number(p.x()) << ", " << format_number(p.y()) << ')';
+  return out.str();
+}
 
 std::string located(SourceLocation where, const std::string& key, const std::string& message) {
   where.key = key;
@@ -76,14 +82,11 @@ std::vector<std::string> scene_warnings(const SceneDef& scene) {
                                 " m) from every particle of '" + flex->name + "'; it will follow the nearest one"));
   }
 
-  // attachments: empty regions, and two attachments holding the same particles
+  // two attachments holding the same particles (an empty one is refused when the model is built)
   for (size_t a = 0; a < scene.attachments.size(); ++a) {
     const AttachmentDef& first = scene.attachments[a];
     const FlexBodyDef* flex = find_flex(scene, first.flex_body);
     if (flex == nullptr) continue;
-    if (particles_inside(*flex, {first.region}) == 0)
-      out.push_back(located(first.where, "attachment." + first.name + ".region",
-                            "warning: attachment '" + first.name + "' holds no particle of '" + flex->name + "'"));
     for (size_t b = a + 1; b < scene.attachments.size(); ++b) {
       const AttachmentDef& second = scene.attachments[b];
       if (second.flex_body != first.flex_body) continue;

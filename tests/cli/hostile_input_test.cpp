@@ -15,6 +15,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -219,7 +220,9 @@ ChildResult run_child(const std::vector<std::string>& args, const fs::path& cwd)
     ::dup2(pipe_fds[1], 2);
     ::close(pipe_fds[0]);
     std::vector<char*> argv;
-    std::string program = PERIFLEX_BINARY;
+    // PERIFLEX_BINARY_UNDER_TEST runs the corpus against another build (to compare releases)
+    const char* other = std::getenv("PERIFLEX_BINARY_UNDER_TEST");
+    std::string program = other != nullptr && *other != '\0' ? other : PERIFLEX_BINARY;
     argv.push_back(program.data());
     std::vector<std::string> copy = args;
     for (std::string& a : copy) argv.push_back(a.data());

@@ -2,7 +2,7 @@
 // [limits]: particles (counted exactly, by the scan that later fills them), bonds, bytes of
 // memory for all flexible bodies together, steps, series.csv rows, rendered frames and threads.
 // It also checks the values that only make sense together: dt against end_time, the output and
-// frame intervals against dt. A scene over a limit is refused with InputError naming the figure,
+// frame interval against dt. A scene over a limit is refused with InputError naming the figure,
 // the limit and the key (or command-line flag) to change.
 //
 //   RunPlan plan;                       // what the command line adds

@@ -156,13 +156,13 @@ int thread_cap(const LimitsDef& limits) { return limits.max_threads > 0 ? limits
 
 double memory_cap(const LimitsDef& limits) {
   if (limits.max_memory > 0.0) return limits.max_memory;
-  // what the machine has, and what this process may map
-  double available = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  // 80% of what the machine has; half of what this process may map (the address space also holds
+  // the program, thread stacks, allocator arenas and vectors while they grow)
+  double available = 0.8 * static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   struct rlimit limit {};
   if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-    available = std::min(available, static_cast<double>(limit.rlim_cur));
-  if (!(available > 0.0)) available = 1e9;
-  return 0.8 * available;
+    available = std::min(available, 0.5 * static_cast<double>(limit.rlim_cur));
+  return available > 0.0 ? available : 1e9;
 }
 
 SceneBudget check_scene_budget(const SceneDef& scene, const RunPlan& plan) {

@@ -43,8 +43,8 @@ constexpr double kBytesPerNeighbor = 32.0;
 int machine_cores();
 // The largest thread count accepted: limits.max_threads, or 4 x the cores.
 int thread_cap(const LimitsDef& limits);
-// The memory budget in bytes: limits.max_memory, or 80% of the smaller of physical memory and
-// the address-space limit of this process.
+// The memory budget in bytes: limits.max_memory, or the smaller of 80% of physical memory and
+// half the address-space limit of this process.
 double memory_cap(const LimitsDef& limits);
 
 // Checks the scene (and the plan) against its limits; throws InputError. Returns the figures.

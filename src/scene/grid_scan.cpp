@@ -24,6 +24,11 @@ long clamp_index(double value, long lo, long hi) {
 class RowShape {
  public:
   RowShape(const ShapeDef& shape, const GridFrame& frame) : shape_(shape), frame_(frame) {
+    // a box's (or a bar's) rotation, once rather than on every row
+    if (shape.kind == ShapeDef::Kind::kBox) angle_ = shape.angle;
+    if (shape.kind == ShapeDef::Kind::kBar) angle_ = std::atan2(shape.p2.y() - shape.p1.y(), shape.p2.x() - shape.p1.x());
+    cos_ = std::cos(angle_);
+    sin_ = std::sin(angle_);
     if (shape.kind != ShapeDef::Kind::kPolygon) return;
     // edges sorted by their lower end, so a row adds the edges it reaches
     const size_t n = shape.vertices.size();
@@ -60,7 +65,7 @@ class RowShape {
     const double inf = std::numeric_limits<double>::infinity();
     switch (shape_.kind) {
       case ShapeDef::Kind::kBox:
-        return box_interval(shape_.center, 0.5 * shape_.width, 0.5 * shape_.height, shape_.angle, y, xa, xb);
+        return box_interval(shape_.center, 0.5 * shape_.width, 0.5 * shape_.height, y, xa, xb);
       case ShapeDef::Kind::kCircle:
         return circle_interval(shape_.center, shape_.radius, y, xa, xb);
       case ShapeDef::Kind::kBar: {
@@ -69,8 +74,7 @@ class RowShape {
         xb = -inf;
         const Vec2 d = shape_.p2 - shape_.p1;
         double a = 0, b = 0;
-        if (box_interval(0.5 * (shape_.p1 + shape_.p2), 0.5 * d.norm(), shape_.radius, std::atan2(d.y(), d.x()), y, a,
-                         b))
+        if (box_interval(0.5 * (shape_.p1 + shape_.p2), 0.5 * d.norm(), shape_.radius, y, a, b))
           xa = std::min(xa, a), xb = std::max(xb, b);
         if (circle_interval(shape_.p1, shape_.radius, y, a, b)) xa = std::min(xa, a), xb = std::max(xb, b);
         if (circle_interval(shape_.p2, shape_.radius, y, a, b)) xa = std::min(xa, a), xb = std::max(xb, b);
@@ -81,9 +85,9 @@ class RowShape {
     }
   }
 
-  // x interval of a rotated box (half sizes hw, hh, with the inside test's tolerance) on line y.
-  static bool box_interval(const Vec2& c, double hw, double hh, double angle, double y, double& xa, double& xb) {
-    const double co = std::cos(angle), si = std::sin(angle);
+  // x interval of a box rotated by angle_ (half sizes hw, hh, with the inside test's tolerance) on line y.
+  bool box_interval(const Vec2& c, double hw, double hh, double y, double& xa, double& xb) const {
+    const double co = cos_, si = sin_;
     const double w = hw * (1 + 1e-9), h = hh * (1 + 1e-9);
     const double dy = y - c.y();
     double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
@@ -163,6 +167,7 @@ class RowShape {
 
   const ShapeDef& shape_;
   const GridFrame& frame_;
+  double angle_ = 0.0, cos_ = 1.0, sin_ = 0.0;
   std::vector<Edge> edges_, active_;
   size_t next_ = 0;
   std::vector<double> crossings_;

@@ -227,7 +227,7 @@ struct LimitsDef {
   double max_steps = 1e9;          // fixed steps of the run (end_time / dt)
   double max_output_rows = 1e6;    // series.csv rows
   double max_frames = 2e4;         // rendered frames
-  double max_grid_rows = 5e7;      // grid rows scanned to place particles (rows x shapes + polygon edge rows)
+  double max_grid_rows = 1e7;      // grid rows scanned to place particles (rows x shapes + polygon edge rows)
   int max_threads = 0;             // solver and --threads; 0: 4 x the cores of the machine
 };
 

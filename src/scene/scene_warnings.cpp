@@ -33,6 +33,16 @@ ShapeDef disc(const Vec2& center, double radius) {
   return s;
 }
 
+// Axis-aligned bounds of two shapes meet.
+bool bounds_overlap(const ShapeDef& a, const ShapeDef& b) {
+  Vec2 alo, ahi, blo, bhi;
+  shape_bounds(a, alo, ahi);
+  shape_bounds(b, blo, bhi);
+  return alo.x() <= bhi.x() && blo.x() <= ahi.x() && alo.y() <= bhi.y() && blo.y() <= ahi.y();
+}
+
+constexpr int kMaxOverlapWarnings = 10;
+
 const FlexBodyDef* find_flex(const SceneDef& scene, const std::string& name) {
   for (const FlexBodyDef& flex : scene.flex_bodies)
     if (flex.name == name) return &flex;
@@ -82,16 +92,18 @@ std::vector<std::string> scene_warnings(const SceneDef& scene) {
                                 " m) from every particle of '" + flex->name + "'; it will follow the nearest one"));
   }
 
-  // two attachments holding the same particles (an empty one is refused when the model is built)
+  // two attachments holding the same particles (an empty one is refused when the model is built);
+  // only pairs whose bounds meet are scanned, and a few reports say enough
+  int overlaps = 0;
   for (size_t a = 0; a < scene.attachments.size(); ++a) {
     const AttachmentDef& first = scene.attachments[a];
     const FlexBodyDef* flex = find_flex(scene, first.flex_body);
     if (flex == nullptr) continue;
-    for (size_t b = a + 1; b < scene.attachments.size(); ++b) {
+    for (size_t b = a + 1; b < scene.attachments.size() && overlaps < kMaxOverlapWarnings; ++b) {
       const AttachmentDef& second = scene.attachments[b];
-      if (second.flex_body != first.flex_body) continue;
+      if (second.flex_body != first.flex_body || !bounds_overlap(first.region, second.region)) continue;
       const long shared = particles_inside(*flex, {first.region, second.region});
-      if (shared > 0)
+      if (shared > 0 && ++overlaps <= kMaxOverlapWarnings)
         out.push_back(located(second.where, "attachment." + second.name + ".region",
                               "warning: attachments '" + first.name + "' and '" + second.name + "' both hold " +
                                   std::to_string(shared) + " particles of '" + flex->name +

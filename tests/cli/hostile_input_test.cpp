@@ -137,56 +137,68 @@ std::vector<HostileCase> load_corpus() {
   return cases;
 }
 
-// Special files the command lines name, made once per test program.
-struct Fixtures {
-  fs::path root, file, dir, fifo, sparse, big, zero_link, loop_link;
-  Fixtures() {
-    root = fs::current_path() / "hostile_fixtures";
-    fs::remove_all(root);
-    fs::create_directories(root / "dir");
-    dir = root / "dir";
-    file = root / "plain.txt";
-    std::ofstream(file) << "not a folder\n";
-    fifo = root / "fifo.toml";
-    ::mkfifo(fifo.c_str(), 0600);
-    // 20 GB that take no room on disk
-    sparse = root / "sparse.toml";
-    std::ofstream(sparse).close();
-    fs::resize_file(sparse, 20ull << 30);
-    // a regular file just over the scene-size cap
-    big = root / "big.toml";
-    std::ofstream out(big, std::ios::binary);
-    const std::string line(1023, '#');
-    for (int k = 0; k < 17 * 1024; ++k) out << line << '\n';
-    out.close();
-    zero_link = root / "zero.toml";
-    fs::create_symlink("/dev/zero", zero_link);
-    loop_link = root / "loop.toml";
-    fs::create_symlink(loop_link, loop_link);
+// Special files the command lines name, made on first use in a folder of this test process
+// (ctest runs cases of the corpus in parallel processes) and removed when it ends.
+class Fixtures {
+ public:
+  Fixtures() : root_(fs::current_path() / ("hostile_fixtures_" + std::to_string(::getpid()))) {}
+  ~Fixtures() {
+    std::error_code ec;
+    fs::remove_all(root_, ec);
   }
+
+  // The path of fixture `name`, made the first time it is asked for.
+  fs::path get(const std::string& name) {
+    fs::create_directories(root_);
+    if (name == "dir") return make(root_ / "dir", [](const fs::path& p) { fs::create_directories(p); });
+    if (name == "file") return make(root_ / "plain.txt", [](const fs::path& p) { std::ofstream(p) << "not a folder\n"; });
+    if (name == "fifo") return make(root_ / "fifo.toml", [](const fs::path& p) { ::mkfifo(p.c_str(), 0600); });
+    // 20 GB that take no room on disk
+    if (name == "sparse")
+      return make(root_ / "sparse.toml", [](const fs::path& p) {
+        std::ofstream(p).close();
+        fs::resize_file(p, 20ull << 30);
+      });
+    // a regular file just over the scene-size cap
+    if (name == "big")
+      return make(root_ / "big.toml", [](const fs::path& p) {
+        std::ofstream out(p, std::ios::binary);
+        const std::string line(1023, '#');
+        for (int k = 0; k < 17 * 1024; ++k) out << line << '\n';
+      });
+    if (name == "zero_link") return make(root_ / "zero.toml", [](const fs::path& p) { fs::create_symlink("/dev/zero", p); });
+    if (name == "loop_link") return make(root_ / "loop.toml", [](const fs::path& p) { fs::create_symlink(p, p); });
+    return root_ / name;
+  }
+
+ private:
+  template <class Make>
+  fs::path make(const fs::path& path, Make&& how) {
+    if (!fs::exists(fs::symlink_status(path))) how(path);
+    return path;
+  }
+  fs::path root_;
 };
 
-const Fixtures& fixtures() {
-  static const Fixtures f;
+Fixtures& fixtures() {
+  static Fixtures f;
   return f;
 }
 
 std::string substitute(std::string text, const fs::path& out) {
-  const Fixtures& f = fixtures();
-  const std::pair<std::string, std::string> table[] = {
-      {"{scenes}", std::string(PERIFLEX_SOURCE_ROOT) + "/scenes"},
-      {"{hostile}", corpus_dir().string()},
-      {"{out}", out.string()},
-      {"{file}", f.file.string()},
-      {"{dir}", f.dir.string()},
-      {"{fifo}", f.fifo.string()},
-      {"{sparse}", f.sparse.string()},
-      {"{big}", f.big.string()},
-      {"{zero_link}", f.zero_link.string()},
-      {"{loop_link}", f.loop_link.string()}};
-  for (const auto& [key, value] : table)
+  const std::pair<std::string, std::string> fixed[] = {{"{scenes}", std::string(PERIFLEX_SOURCE_ROOT) + "/scenes"},
+                                                       {"{hostile}", corpus_dir().string()},
+                                                       {"{out}", out.string()}};
+  auto replace = [&](const std::string& key, const std::string& value) {
     for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size()))
       text.replace(at, key.size(), value);
+  };
+  for (const auto& [key, value] : fixed) replace(key, value);
+  for (const char* name : {"file", "dir", "fifo", "sparse", "big", "zero_link", "loop_link"}) {
+    std::string key = "{";
+    key.append(name).append("}");
+    if (text.find(key) != std::string::npos) replace(key, fixtures().get(name).string());
+  }
   return text;
 }
 

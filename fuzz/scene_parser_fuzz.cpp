@@ -1,5 +1,5 @@
-// libFuzzer target for the scene loader: any byte string must either load or be refused with
-// InputError. Anything else -- another exception, a crash, a sanitizer report, a hang -- is a bug.
+// libFuzzer target for the scene loader, its budget and its warnings: any byte string must either
+// load or be refused with InputError. Anything else -- another exception, a crash, a sanitizer report, a hang -- is a bug.
 //
 // Leading lines of the form "#set key.path=value" (TOML comments, so the rest still parses)
 // are also passed as --set overrides, so the override code is fuzzed with the same input.
@@ -9,7 +9,9 @@
 #include <string_view>
 #include <vector>
 
+#include "scene/scene_budget.h"
 #include "scene/scene_loader.h"
+#include "scene/scene_warnings.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -27,7 +29,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
   // bad input must be reported, never crash
   try {
-    periflex::parse_scene(text, "fuzz.toml", overrides);
+    // the budget and the warnings scan the grid: they must stay bounded on any scene that loads
+    const periflex::SceneDef scene = periflex::parse_scene(text, "fuzz.toml", overrides);
+    periflex::check_scene_budget(scene);
+    periflex::scene_warnings(scene);
   } catch (const periflex::InputError&) {
   }
   return 0;

@@ -3,7 +3,8 @@
 #
 #   scripts/fuzz-scene-parser.sh [seconds] [jobs]     (defaults: 60 seconds, 1 job)
 #
-# Builds fuzz/ with clang in build-fuzz/, seeds the corpus with every scene in the tree, and
+# Builds fuzz/ with clang in build-fuzz/, seeds the corpus with every scene in the tree (the
+# hostile-input corpus tests/data/hostile/ included), and
 # copies any input that crashes, leaks or hangs into tests/data/scenes/fuzz/, where the scene
 # tests load it as a regression case. Exit status: 0 when nothing was found, 1 otherwise.
 set -euo pipefail
@@ -25,7 +26,8 @@ mkdir -p "${corpus}" "${findings}" "${regressions}"
 while IFS= read -r -d '' seed; do
   relative="${seed#"${root}/"}"
   cp -f "${seed}" "${corpus}/${relative//\//_}"
-done < <(find "${root}/scenes" "${root}/tests/data/scenes" "${root}/fuzz/seeds" -type f -print0)
+done < <(find "${root}/scenes" "${root}/tests/data/scenes" "${root}/tests/data/hostile/scenes" "${root}/fuzz/seeds" \
+           -type f -name '*.toml' -size -8k -print0)
 
 "${build}/scene_parser_fuzz" "${corpus}" \
   -dict="${root}/fuzz/scene.dict" \

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "cli/run_option_checks.h"
 #include "core/error.h"
 
 #ifdef PERIFLEX_WITH_GUI
@@ -59,6 +60,7 @@ std::string parse_window_size_check(const std::string& text) {
 
 int gui_command(const GuiCommandOptions& options) {
 #ifdef PERIFLEX_WITH_GUI
+  check_gui_options(options);  // flags, output file and the scene's budget, before a window opens
   GuiOptions gui;
   if (!options.size.empty() && !parse_window_size(options.size, gui.width, gui.height)) {
     throw InputError({"command line", 0, 0, "--size"}, parse_window_size_check(options.size));

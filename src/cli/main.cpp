@@ -38,8 +38,7 @@ void add_scene_options(CLI::App* command, std::vector<std::string>& overrides) {
 // Off-screen rendering options shared by `run` and the default headless recording.
 void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_flag("--render", o.render, "Render frames off-screen (EGL) while running");
-  command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default end time / 100)")
-      ->check(CLI::PositiveNumber);
+  command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default end time / 100)");
   command->add_option("--size", o.size_text, "Frame size as WxH (default 1280x720)")->type_name("WxH");
   command->add_option("--samples", o.samples,
                       "Multisamples per pixel, 1 = off (default: 4, or off for 100k particles and more)")
@@ -49,7 +48,7 @@ void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_option("--fps", o.fps, "Playback frame rate of the movie")->check(CLI::Range(1.0, 240.0));
   command->add_option("--snapshot-at", o.snapshot_at, "Simulated time of a single screenshot");
   command->add_option("--screenshot", o.screenshot_path, "PNG file for --snapshot-at");
-  command->add_option("--colormap", o.colormap, "Colour map (turbo, viridis, grey)");
+  command->add_option("--colormap", o.colormap, "Colour map: ember (default), grey, turbo, viridis (assets/colormaps)");
   command->add_option("--field", o.field, "Particle colour: damage, displacement, speed, strain");
   command->add_option("--camera", o.camera,
                       "View of the frames: grow (fit the first frame, widen when the scene leaves it; "

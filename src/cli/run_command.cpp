@@ -13,6 +13,7 @@
 #include "cli/frame_sink.h"
 #include "cli/interrupt.h"
 #include "cli/progress_bar.h"
+#include "cli/run_option_checks.h"
 #include "cli/scene_setup.h"
 #include "core/cpu_time.h"
 #include "core/error.h"
@@ -106,13 +107,7 @@ int run_command(const RunOptions& requested) {
     throw InputError({"command line", 0, 0, "--snapshot-at"}, "needs --screenshot FILE to say where the frame goes");
   // asking for frames or a movie is asking for rendering
   if (!options.frames_dir.empty() || !options.movie_path.empty()) options.render = true;
-  SceneDef scene = load_scene_with_options(options.scene_path, options.overrides, options.until, options.dt,
-                                           options.integrator);
-  if (options.snapshot_at && !(*options.snapshot_at >= 0.0 && *options.snapshot_at <= scene.solver.end_time)) {
-    throw InputError({"command line", 0, 0, "--snapshot-at"},
-                     "the screenshot time must lie between 0 and the end time " + format_number(scene.solver.end_time) +
-                         " s (--until sets the end time)");
-  }
+  SceneDef scene = load_run_scene(options);  // every flag, the scene's budget and the output paths
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
   const std::string out_dir = options.out_dir.empty() ? "out/" + scene.name : options.out_dir;

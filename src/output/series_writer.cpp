@@ -1,6 +1,12 @@
 #include "output/series_writer.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 namespace periflex {
@@ -16,17 +22,28 @@ SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::strin
   }
   columns_.insert(columns_.end(), probe_columns.begin(), probe_columns.end());
 
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_) throw std::runtime_error("cannot write " + path);
+  fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
   std::string header;
   for (size_t k = 0; k < columns_.size(); ++k) header += (k ? "," : "") + columns_[k];
   header += '\n';
-  std::fputs(header.c_str(), file_);
-  std::fflush(file_);
+  write_all(header);
 }
 
 SeriesWriter::~SeriesWriter() {
-  if (file_) std::fclose(file_);
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void SeriesWriter::write_all(const std::string& text) {
+  // one write() call hands the whole line to the kernel, so a kill leaves whole rows; the loop
+  // only continues after a signal or a short write (a full disk)
+  size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) throw std::runtime_error("could not write to " + path_ + " (" + std::strerror(errno) + ")");
+    done += static_cast<size_t>(n);
+  }
 }
 
 bool SeriesWriter::write(const Sample& s) {
@@ -53,8 +70,7 @@ bool SeriesWriter::write(const Sample& s) {
     line_ += buffer;
   }
   line_ += '\n';
-  if (std::fwrite(line_.data(), 1, line_.size(), file_) != line_.size() || std::fflush(file_) != 0)
-    throw std::runtime_error("could not write to " + path_ + " (disk full?)");
+  write_all(line_);
   ++rows_;
   return true;
 }

@@ -1,8 +1,8 @@
 // series.csv: one row per output sample (time, energies, constraint violation, damage, probes).
-// Each row reaches the file in one write, so a run killed half-way leaves complete rows.
+// Each row reaches the file in one write() call of the whole line (no stdio buffer to split it,
+// however many probe columns), so a run killed half-way leaves complete rows.
 #pragma once
 
-#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -24,7 +24,10 @@ class SeriesWriter {
   const std::vector<std::string>& columns() const { return columns_; }
 
  private:
-  std::FILE* file_ = nullptr;
+  // Writes all of `text` at the end of the file; throws when the disk refuses.
+  void write_all(const std::string& text);
+
+  int fd_ = -1;
   std::string path_;
   std::vector<std::string> columns_;
   bool with_damage_ = false;

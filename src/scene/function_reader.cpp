@@ -3,8 +3,9 @@
 namespace periflex {
 
 TimeFunction read_time_function(const ReadContext& context, const toml::node& node, const std::string& key) {
+  // every number of a function is bounded like a length: a rate of 1e300 is no motion a solver can follow
   // a plain number is a constant
-  if (node.is_number()) return TimeFunction::constant(read_number(context, node, key));
+  if (node.is_number()) return TimeFunction::constant(read_number(context, node, key, Sign::kAny, true));
   const auto* table = node.as_table();
   if (table == nullptr)
     context.fail(&node, key, "expected a function (a number or an inline table with a type), found " +
@@ -15,25 +16,25 @@ TimeFunction read_time_function(const ReadContext& context, const toml::node& no
   TimeFunction f;
   if (type == "constant") {
     // f = value
-    f = TimeFunction::constant(in.required_number("value"));
+    f = TimeFunction::constant(in.required_number("value", Sign::kAny, true));
   } else if (type == "rate") {
     // f = value + rate t
-    const double value = in.number("value", 0.0);
-    f = TimeFunction::linear(value, in.required_number("rate"));
+    const double value = in.number("value", 0.0, Sign::kAny, true);
+    f = TimeFunction::linear(value, in.required_number("rate", Sign::kAny, true));
   } else if (type == "polynomial") {
     // f = sum c_k t^k
     f.kind = TimeFunction::Kind::kPolynomial;
     const toml::node* coefficients = in.node("coefficients");
     if (coefficients == nullptr) in.fail_missing("coefficients");
-    f.coefficients = read_number_list(context, *coefficients, in.key_path("coefficients"));
+    f.coefficients = read_number_list(context, *coefficients, in.key_path("coefficients"), true);
     if (f.coefficients.empty()) in.fail("coefficients", "a polynomial needs at least one coefficient");
   } else if (type == "harmonic") {
     // f = offset + amplitude sin(omega t + phase)
     f.kind = TimeFunction::Kind::kHarmonic;
-    f.offset = in.number("offset", 0.0);
-    f.amplitude = in.required_number("amplitude");
-    f.omega = in.required_number("omega");
-    f.phase = in.number("phase", 0.0);
+    f.offset = in.number("offset", 0.0, Sign::kAny, true);
+    f.amplitude = in.required_number("amplitude", Sign::kAny, true);
+    f.omega = in.required_number("omega", Sign::kAny, true);
+    f.phase = in.number("phase", 0.0, Sign::kAny, true);
   } else {
     // piecewise linear through (times[k], values[k])
     f.kind = TimeFunction::Kind::kTable;
@@ -42,7 +43,7 @@ TimeFunction read_time_function(const ReadContext& context, const toml::node& no
     if (times == nullptr) in.fail_missing("times");
     if (values == nullptr) in.fail_missing("values");
     f.times = read_number_list(context, *times, in.key_path("times"), true);
-    f.values = read_number_list(context, *values, in.key_path("values"));
+    f.values = read_number_list(context, *values, in.key_path("values"), true);
     if (f.times.empty()) in.fail("times", "a table function needs at least one point");
     if (f.times.size() != f.values.size())
       in.fail("values", "a table function needs as many values as times (" + std::to_string(f.times.size()) +

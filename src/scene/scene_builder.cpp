@@ -48,6 +48,7 @@ class SceneBuilder {
     // the model sections first, so that references can be resolved as they are read
     read_scene(default_name);
     read_solver();
+    read_limits();
     for (const auto& [table, index] : elements("body")) scene_.bodies.push_back(read_body(*table, index));
     for (const auto& [table, index] : elements("flex_body")) scene_.flex_bodies.push_back(read_flex_body(*table, index));
     for (const auto& [table, index] : elements("joint")) scene_.joints.push_back(read_joint(*table, index));
@@ -124,7 +125,11 @@ class SceneBuilder {
     if (flex_names_.count(name) != 0)
       in.fail(key, "'" + name + "' is a flexible body; " + key + " must name a rigid body" +
               " (couple a flexible body through an [[attachment]] to a virtual body)");
-    in.fail(key, "body '" + name + "' is not declared (rigid bodies: " + rigid_list(allow_ground) + ")");
+    const std::string rigid = rigid_list(allow_ground);
+    std::string flexible;
+    for (const FlexBodyDef& flex : scene_.flex_bodies) flexible += (flexible.empty() ? "" : ", ") + flex.name;
+    in.fail(key, "body '" + name + "' is not declared (rigid bodies: " + (rigid.empty() ? std::string("none") : rigid) +
+            (flexible.empty() ? std::string() : "; flexible bodies: " + flexible) + ")");
   }
 
   std::string rigid_list(bool with_ground) const {
@@ -132,6 +137,14 @@ class SceneBuilder {
     if (with_ground) names.emplace_back("ground");
     for (const BodyDef& body : scene_.bodies) names.push_back(body.name);
     return join(names);
+  }
+
+  // A physical quantity outside the range any material or model has.
+  static void check_range(TableReader& in, const char* key, double value, double lo, double hi, const std::string& unit) {
+    if (value >= lo && value <= hi) return;
+    const std::string u = unit.empty() ? "" : " " + unit;
+    in.fail(key, std::string(key) + " = " + format_number(value) + u + " is outside the physically meaningful range [" +
+            format_number(lo) + ", " + format_number(hi) + "]" + u);
   }
 
   // Two-body elements may not connect a body to itself.
@@ -149,6 +162,12 @@ class SceneBuilder {
     TableReader in(context_, *table, "scene", "[scene]");
     scene_.name = in.string("name", default_name);
     if (scene_.name.empty()) in.fail("name", "the scene name may not be empty (omit it to use the file name)");
+    // the name titles outputs and (made safe) names the default output folder: one short line
+    if (scene_.name.size() > kMaxSceneNameLength)
+      in.fail("name", "the scene name has " + std::to_string(scene_.name.size()) + " characters; at most " +
+              std::to_string(kMaxSceneNameLength) + " are allowed");
+    if (std::any_of(scene_.name.begin(), scene_.name.end(), [](char c) { return static_cast<unsigned char>(c) < ' ' || c == 127; }))
+      in.fail("name", "the scene name may not contain control characters (line breaks, tabs, ...)");
     scene_.description = in.string("description", "");
     scene_.gravity = in.vec2("gravity", Vec2(0.0, -9.81));
     in.finish();
@@ -159,6 +178,8 @@ class SceneBuilder {
     if (table == nullptr) return;
     TableReader in(context_, *table, "solver", "[solver]");
     SolverDef& solver = scene_.solver;
+    // values that later checks relate to each other (and to command-line flags) remember where they came from
+    for (const char* key : {"integrator", "dt", "end_time", "output_interval", "threads"}) note_origin(in, key);
     solver.integrator = in.choice("integrator", scene_integrator_names(), solver.integrator);
     solver.dt = in.number("dt", solver.dt, Sign::kPositive, true);
     solver.end_time = in.number("end_time", solver.end_time, Sign::kPositive, true);
@@ -181,6 +202,35 @@ class SceneBuilder {
     in.finish();
   }
 
+  // Records where the value under `key` of `in` came from (file position or --set).
+  void note_origin(TableReader& in, const char* key) {
+    if (const toml::node* node = in.table().get(key)) scene_.origin[in.key_path(key)] = context_.locate(node, in.key_path(key));
+  }
+
+  // [limits]: budgets raised (or lowered) knowingly
+  void read_limits() {
+    const toml::table* table = top_.optional_table("limits");
+    if (table == nullptr) return;
+    TableReader in(context_, *table, "limits", "[limits]");
+    LimitsDef& l = scene_.limits;
+    for (const char* key : {"max_particles", "max_memory", "max_steps", "max_output_rows", "max_frames",
+                            "max_grid_rows", "max_threads"})
+      note_origin(in, key);
+    l.max_particles = in.number("max_particles", l.max_particles, Sign::kPositive);
+    l.max_memory = in.number("max_memory", l.max_memory, Sign::kNonNegative);
+    l.max_steps = in.number("max_steps", l.max_steps, Sign::kPositive);
+    l.max_output_rows = in.number("max_output_rows", l.max_output_rows, Sign::kPositive);
+    l.max_frames = in.number("max_frames", l.max_frames, Sign::kPositive);
+    l.max_grid_rows = in.number("max_grid_rows", l.max_grid_rows, Sign::kPositive);
+    l.max_threads = static_cast<int>(in.integer("max_threads", l.max_threads, 0));
+    // a limit is a count: even raised knowingly it must fit the integers that hold it
+    for (const char* key : {"max_particles", "max_steps", "max_output_rows", "max_frames", "max_grid_rows"})
+      if (const auto value = in.optional_number(key); value && *value > 1e15)
+        in.fail(key, "must be at most 1e15, found " + format_number(*value));
+    if (l.max_particles > 2e9) in.fail("max_particles", "must be at most 2e9 (particle indices are 32-bit integers)");
+    in.finish();
+  }
+
   void read_correction(const toml::table& table) {
     TableReader in(context_, table, "solver.correction", "[solver.correction]");
     CorrectionDef& c = scene_.solver.correction;
@@ -191,6 +241,10 @@ class SceneBuilder {
     c.beta = in.number("beta", c.beta, Sign::kNonNegative);
     c.tolerance = in.number("tolerance", c.tolerance, Sign::kPositive);
     c.max_iterations = static_cast<int>(in.integer("max_iterations", c.max_iterations, 1));
+    // each step runs up to this many Newton iterations: a million would stall every step
+    if (c.max_iterations > kMaxProjectionIterations)
+      in.fail("max_iterations", "must be at most " + std::to_string(kMaxProjectionIterations) + ", found " +
+              std::to_string(c.max_iterations) + " (projection converges in a few iterations or not at all)");
     in.finish();
   }
 
@@ -417,6 +471,7 @@ class SceneBuilder {
     // grid and horizon
     flex.grid_spacing = in.required_number("grid_spacing", Sign::kPositive, true);
     flex.thickness = in.number("thickness", flex.thickness, Sign::kPositive, true);
+    check_range(in, "thickness", flex.thickness, 1e-9, 1e3, "m");
     flex.horizon_ratio = in.number("horizon_ratio", flex.horizon_ratio, Sign::kPositive);
     if (flex.horizon_ratio < 1.0)
       in.fail("horizon_ratio", "must be at least 1 (a horizon smaller than the grid spacing has no bonds), found " +
@@ -426,12 +481,14 @@ class SceneBuilder {
                                    " (each particle would have hundreds of thousands of bonds), found " +
                                    format_number(flex.horizon_ratio));
     // refuse absurd grids before anything is allocated
+    // (a first look from the area; the exact count and the whole scene's budget come after loading)
+    const double limit = std::max(kMaxParticlesPerFlexBody, scene_.limits.max_particles);
     const double particles = shape_area(flex.shape) / (flex.grid_spacing * flex.grid_spacing);
-    if (!(particles <= kMaxParticlesPerFlexBody)) {
-      const double smallest = std::sqrt(shape_area(flex.shape) / kMaxParticlesPerFlexBody);
+    if (!(particles <= limit)) {
+      const double smallest = std::sqrt(shape_area(flex.shape) / limit);
       in.fail("grid_spacing", "flexible body '" + flex.name + "' would have about " + format_estimate(particles) +
-              " particles (area / grid_spacing^2), more than the limit of " + format_estimate(kMaxParticlesPerFlexBody) +
-              "; use grid_spacing >= " + format_number(smallest));
+              " particles (area / grid_spacing^2), more than the limit of " + format_estimate(limit) +
+              " (limits.max_particles); use grid_spacing >= " + format_number(smallest));
     }
 
     // model options
@@ -492,6 +549,9 @@ class SceneBuilder {
     PdMaterialDef m;
     m.youngs_modulus = in.required_number("youngs_modulus", Sign::kPositive);
     m.density = in.required_number("density", Sign::kPositive);
+    // physically meaningful ranges: beyond them the critical step under- or overflows
+    check_range(in, "youngs_modulus", m.youngs_modulus, 1e-3, 1e13, "Pa");
+    check_range(in, "density", m.density, 1e-3, 1e6, "kg/m^3");
     // one fracture criterion: energy or stretch
     const auto energy = in.optional_number("fracture_energy", Sign::kPositive);
     const auto stretch = in.optional_number("critical_stretch", Sign::kPositive);
@@ -500,6 +560,8 @@ class SceneBuilder {
       in.fail_missing("fracture_energy", "or critical_stretch; or set fracture = false in the flexible body");
     m.fracture_energy = energy.value_or(0.0);
     m.critical_stretch = stretch.value_or(0.0);
+    if (energy) check_range(in, "fracture_energy", *energy, 1e-12, 1e8, "J/m^2");
+    if (stretch) check_range(in, "critical_stretch", *stretch, 1e-12, 10.0, "");
     m.plane_strain = in.choice("plane", {"stress", "strain"}, "stress") == "strain";
     // bond-based peridynamics fixes Poisson's ratio: 1/3 in plane stress, 1/4 in plane strain
     if (const auto nu = in.optional_number("poisson_ratio")) {

@@ -12,9 +12,11 @@
 //   FlexBodyDef     peridynamic bodies (material, grid, fracture, damping, BCs)
 //   AttachmentDef   rigid-flexible joints between a virtual body and particles
 //   SolverDef       integrator, time step, correction, output cadence
+//   LimitsDef       budgets of particles, memory, steps, rows, frames and threads
 //   SceneDef        all of the above
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -221,6 +223,19 @@ struct SolverDef {
 };
 
 // ---------------------------------------------------------------------------
+// What one run may cost. Every figure is computed before anything big is allocated and a scene
+// over a limit is refused naming both; [limits] raises a limit knowingly (docs/scenes.md).
+struct LimitsDef {
+  double max_particles = 2e7;      // particles of all flexible bodies together
+  double max_memory = 0.0;         // bytes of particles and bonds; 0: 80% of physical memory and address space
+  double max_steps = 1e9;          // fixed steps of the run (end_time / dt)
+  double max_output_rows = 1e6;    // series.csv rows
+  double max_frames = 2e4;         // rendered frames
+  double max_grid_rows = 1e7;      // grid rows scanned to place particles (rows x shapes + polygon edge rows)
+  int max_threads = 0;             // solver and --threads; 0: 4 x the cores of the machine
+};
+
+// ---------------------------------------------------------------------------
 struct SceneDef {
   std::string name;                // from [scene] name or the file stem
   std::string description;
@@ -234,6 +249,20 @@ struct SceneDef {
   std::vector<ProbeDef> probes;
   std::vector<FlexBodyDef> flex_bodies;
   std::vector<AttachmentDef> attachments;
+  LimitsDef limits;
+  // Where single values came from, by dotted key ("solver.dt", "limits.max_memory"): the file
+  // position, --set, or the command-line flag that replaced them. Checks that relate values to
+  // each other name the one to change.
+  std::map<std::string, SourceLocation> origin;
+  // Location of `key`: its recorded origin, or the file alone.
+  SourceLocation locate(const std::string& key) const {
+    const auto it = origin.find(key);
+    if (it != origin.end()) return it->second;
+    SourceLocation where;
+    where.file = path;
+    where.key = key;
+    return where;
+  }
 };
 
 }  // namespace periflex

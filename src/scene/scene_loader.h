@@ -18,8 +18,18 @@
 namespace periflex {
 
 // A flexible body whose estimated particle count (area / grid_spacing^2) exceeds this is refused
-// before anything is allocated.
+// at once, before its cells are counted (the exact count and the scene's budget follow in
+// scene/scene_budget.h).
 constexpr double kMaxParticlesPerFlexBody = 2e7;
+
+// Largest scene file read (bytes); PERIFLEX_MAX_SCENE_BYTES raises it. Only regular files are read.
+constexpr long kMaxSceneBytes = 16L << 20;
+
+// Longest scene name.
+constexpr size_t kMaxSceneNameLength = 100;
+
+// Most projection iterations per step.
+constexpr int kMaxProjectionIterations = 1000;
 
 // Reads and validates the scene file at `path`, applying `overrides` ("key.path=value") in order.
 // Throws InputError (file unreadable, syntax, schema or validation error).

@@ -83,7 +83,7 @@ double read_number(const ReadContext& context, const toml::node& node, const std
   if (!std::isfinite(value)) context.fail(&node, key, "expected a finite number, found " + format_number(value));
   if (geometric && std::abs(value) > kMaxGeometricMagnitude)
     context.fail(&node, key, "value " + format_number(value) + " is absurdly large (the limit for lengths, "
-                 "coordinates and times is " + format_number(kMaxGeometricMagnitude) + ")");
+                 "coordinates, times and function values is " + format_number(kMaxGeometricMagnitude) + ")");
   if (sign == Sign::kPositive && !(value > 0.0))
     context.fail(&node, key, "must be positive, found " + format_number(value));
   if (sign == Sign::kNonNegative && value < 0.0)

@@ -1,0 +1,157 @@
+#include "cli/run_option_checks.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include "cli/scene_setup.h"
+#include "core/error.h"
+#include "core/resources.h"
+#include "scene/scene_budget.h"
+#include "scene/toml_reader.h"
+
+namespace periflex {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void fail(const std::string& flag, const std::string& message) {
+  throw InputError(flag_location(flag), message);
+}
+
+std::string join(const std::vector<std::string>& words) {
+  std::string out;
+  for (size_t k = 0; k < words.size(); ++k) out += (k ? ", " : "") + words[k];
+  return out;
+}
+
+// A folder the run may write into: created when missing, then proven writable by creating
+// (and removing) a file in it. /dev/null, /proc, a plain file or a read-only folder fail here.
+void check_writable_folder(const std::string& flag, const std::string& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::exists(status) && !fs::is_directory(status))
+    fail(flag, "'" + path + "' exists and is not a folder; " + flag + " names a folder for the outputs");
+  if (!fs::exists(status)) {
+    fs::create_directories(path, ec);
+    if (ec) fail(flag, "cannot create the folder '" + path + "': " + ec.message());
+  }
+  const std::string probe = (fs::path(path) / ".periflex-write-test-XXXXXX").string();
+  std::vector<char> name(probe.begin(), probe.end());
+  name.push_back('\0');
+  const int fd = ::mkstemp(name.data());
+  if (fd < 0) fail(flag, "cannot write in the folder '" + path + "': " + std::strerror(errno));
+  ::close(fd);
+  ::unlink(name.data());
+}
+
+// A file the run will create or replace: not a folder, in a folder that exists and is writable.
+void check_writable_file(const std::string& flag, const std::string& path) {
+  if (path.empty() || path.back() == '/') fail(flag, "'" + path + "' is not a file name");
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (fs::is_directory(status)) fail(flag, "'" + path + "' is a folder; " + flag + " names a file");
+  if (fs::exists(status) && !fs::is_regular_file(status))
+    fail(flag, "'" + path + "' exists and is not a regular file");
+  fs::path parent = fs::path(path).parent_path();
+  if (parent.empty()) parent = ".";
+  if (!fs::is_directory(parent, ec)) fail(flag, "the folder of '" + path + "' does not exist");
+  check_writable_folder(flag, parent.string());
+}
+
+void check_number(const std::string& flag, double value, double lo, double hi, const std::string& what) {
+  if (!std::isfinite(value) || value < lo || value > hi)
+    fail(flag, "expected " + what + " in [" + format_number(lo) + ", " + format_number(hi) + "], found " +
+                   format_number(value));
+}
+
+// The values of `run` that need no scene.
+void check_run_values(const RunOptions& o) {
+  if (o.frame_every != 0.0 && (!std::isfinite(o.frame_every) || o.frame_every <= 0.0 || o.frame_every > kMaxGeometricMagnitude))
+    fail("--frame-every", "expected a positive, finite number of simulated seconds, found " + format_number(o.frame_every));
+  check_number("--fps", o.fps, 1.0, 240.0, "a frame rate");
+  if (o.snapshot_at) check_number("--snapshot-at", *o.snapshot_at, 0.0, kMaxGeometricMagnitude, "a time");
+  if (o.threads < 0) fail("--threads", "expected a thread count >= 0, found " + std::to_string(o.threads));
+  if (o.vtk_every < 0) fail("--vtk-every", "expected a step count >= 0");
+  if (!o.colormap.empty()) {
+    const auto names = colormap_names();
+    if (std::find(names.begin(), names.end(), o.colormap) == names.end())
+      fail("--colormap", "unknown colour map '" + o.colormap + "'; expected one of: " + join(names));
+  }
+  if (!o.field.empty()) {
+    const std::vector<std::string> fields = {"damage", "displacement", "speed", "strain"};
+    if (std::find(fields.begin(), fields.end(), o.field) == fields.end())
+      fail("--field", "unknown field '" + o.field + "'; expected one of: " + join(fields));
+  }
+}
+
+}  // namespace
+
+std::string safe_folder_name(const std::string& name) {
+  std::string out;
+  for (char c : name) {
+    const bool plain = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '-' ||
+                       c == '_' || c == '.';
+    out += plain ? c : '_';
+  }
+  // no ".", "..", or hidden folder, and a length every file system takes
+  while (!out.empty() && out.front() == '.') out.erase(out.begin());
+  if (out.size() > 64) out.resize(64);
+  return out.empty() ? "scene" : out;
+}
+
+std::vector<std::string> colormap_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(fs::path(find_resource_root()) / "assets" / "colormaps", ec))
+    if (entry.path().extension() == ".png") names.push_back(entry.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+SceneDef load_run_scene(RunOptions& options) {
+  check_run_values(options);
+
+  // the scene, with the flags applied and the frames and threads of this run in its budget
+  RunPlan plan;
+  plan.threads = options.threads;
+  plan.threads_where = flag_location("--threads");
+  SceneDef scene = load_scene_with_options(options.scene_path, options.overrides, options.until, options.dt,
+                                           options.integrator);
+  if (options.render) {
+    plan.frame_every = options.frame_every > 0 ? options.frame_every : scene.solver.end_time / 100.0;
+    plan.frame_every_where = flag_location("--frame-every");
+  }
+  check_scene_budget(scene, plan);
+  if (options.snapshot_at && *options.snapshot_at > scene.solver.end_time)
+    fail("--snapshot-at", "t = " + format_number(*options.snapshot_at) + " s is after the end of the run (" +
+                              format_number(scene.solver.end_time) + " s)");
+  // VTK snapshots are files like frames
+  if (options.vtk_every > 0 && scene.solver.integrator != "dopri54") {
+    const double files = scene.solver.end_time / scene.solver.dt / static_cast<double>(options.vtk_every);
+    if (files > scene.limits.max_frames)
+      fail("--vtk-every", "the run would write " + format_number(std::floor(files)) +
+                              " VTK snapshots, more than limits.max_frames = " + format_number(scene.limits.max_frames));
+  }
+
+  // every output path, before anything is computed
+  if (options.out_dir.empty()) options.out_dir = "out/" + safe_folder_name(scene.name);
+  check_writable_folder("--out", options.out_dir);
+  if (!options.frames_dir.empty()) check_writable_folder("--frames", options.frames_dir);
+  if (!options.movie_path.empty()) check_writable_file("--movie", options.movie_path);
+  if (!options.screenshot_path.empty()) check_writable_file("--screenshot", options.screenshot_path);
+  return scene;
+}
+
+void check_gui_options(const GuiCommandOptions& options) {
+  if (!options.screenshot.empty()) check_writable_file("--screenshot", options.screenshot);
+  if (!options.scene_path.empty()) load_scene_with_options(options.scene_path, options.overrides);
+}
+
+}  // namespace periflex

@@ -1,0 +1,29 @@
+// The one check of command-line values for `run` and `gui`, before the scene is built: every
+// number finite and in range, names from the real lists (colour maps, fields), output paths
+// writable as the folder or file each flag expects, and the scene loaded with the run's plan
+// (frames, threads) so that its budget covers them. Errors name the flag and exit 2.
+#pragma once
+
+#include <string>
+
+#include "cli/gui_command.h"
+#include "cli/run_command.h"
+#include "scene/scene_def.h"
+
+namespace periflex {
+
+// A safe folder name made from a scene name: letters, digits, '.', '-' and '_' only (others
+// become '_'), no leading dot, at most 64 characters; "scene" when nothing is left.
+std::string safe_folder_name(const std::string& name);
+
+// Colour maps the renderer can load (assets/colormaps/*.png), sorted.
+std::vector<std::string> colormap_names();
+
+// Checks the options of `run`, loads and checks the scene with them, fills options.out_dir
+// with out/<safe scene name> when it is empty and checks every output path. Throws InputError.
+SceneDef load_run_scene(RunOptions& options);
+
+// Checks the options of `gui` and that its scene loads within its budget. Throws InputError.
+void check_gui_options(const GuiCommandOptions& options);
+
+}  // namespace periflex

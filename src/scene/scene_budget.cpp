@@ -1,0 +1,176 @@
+#include "scene/scene_budget.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "scene/grid_scan.h"
+#include "scene/toml_reader.h"
+
+namespace periflex {
+
+namespace {
+
+// Large figures in a short form ("4.2e+13").
+std::string figure(double value) {
+  std::ostringstream out;
+  out.precision(3);
+  out << value;
+  return out.str();
+}
+
+[[noreturn]] void refuse(const SourceLocation& where, const std::string& message) { throw InputError(where, message); }
+
+SourceLocation flex_key(const FlexBodyDef& flex, const std::string& key) {
+  SourceLocation where = flex.where;
+  where.key = "flex_body." + flex.name + "." + key;
+  return where;
+}
+
+// Neighbours of a particle in the interior of a grid at this horizon ratio: the grid offsets
+// within the reach the neighbour search uses.
+double neighbours_per_particle(const FlexBodyDef& flex) {
+  const double reach = flex.horizon_ratio + (flex.partial_volume_correction ? 0.5 : 0.0);
+  const int r = static_cast<int>(std::ceil(reach)) + 1;
+  long count = 0;
+  for (int a = -r; a <= r; ++a)
+    for (int b = -r; b <= r; ++b)
+      if ((a != 0 || b != 0) && a * a + b * b <= reach * reach * (1 + 1e-9)) ++count;
+  return static_cast<double>(count);
+}
+
+// The scene's time-stepping figures: dt against end_time, steps, rows, frames.
+void check_time(const SceneDef& scene, const RunPlan& plan, SceneBudget& budget) {
+  const SolverDef& s = scene.solver;
+  const LimitsDef& l = scene.limits;
+  const bool adaptive = s.integrator == "dopri54";
+  const bool dt_given = scene.origin.count("solver.dt") != 0;
+  if (s.dt > s.end_time)
+    refuse(scene.locate(dt_given ? "solver.dt" : "solver.end_time"),
+           "dt = " + format_number(s.dt) + " exceeds end_time = " + format_number(s.end_time) +
+               "; the run would not take a single step");
+
+  // fixed steps: end_time / dt of them
+  budget.steps = s.end_time / s.dt;
+  // blame the value the command line gave, if one did
+  const bool until_flag = scene.locate("solver.end_time").file == "command line" &&
+                          scene.locate("solver.dt").file != "command line";
+  if (!adaptive && !(budget.steps <= l.max_steps))
+    refuse(scene.locate(until_flag ? "solver.end_time" : "solver.dt"), "the run would take " + figure(budget.steps) + " steps (end_time " +
+                                          format_number(s.end_time) + " s / dt " + format_number(s.dt) +
+                                          " s), more than limits.max_steps = " + figure(l.max_steps) +
+                                          "; raise dt, lower end_time, or raise limits.max_steps");
+
+  // rows of series.csv: one per output interval. An interval shorter than dt writes a row every
+  // step, but the output schedule still counts its intervals, so they are what is bounded.
+  if (s.output_interval > 0.0) {
+    budget.rows = s.end_time / s.output_interval + 2;
+  } else {
+    budget.rows = adaptive ? 0.0 : budget.steps / 10 + 2;
+  }
+  if (!(budget.rows <= l.max_output_rows))
+    refuse(scene.locate(s.output_interval > 0.0 ? "solver.output_interval" : "solver.dt"),
+           "series.csv would get " + figure(budget.rows) + " rows, more than limits.max_output_rows = " +
+               figure(l.max_output_rows) + "; raise solver.output_interval or limits.max_output_rows");
+
+  // rendered frames
+  if (plan.frame_every > 0.0) {
+    if (!adaptive && plan.frame_every < s.dt * (1 - 1e-9))
+      refuse(plan.frame_every_where, "a frame every " + format_number(plan.frame_every) +
+                                         " s is shorter than a step (dt = " + format_number(s.dt) +
+                                         " s); give at least dt");
+    budget.frames = s.end_time / plan.frame_every + 1;
+    if (!(budget.frames <= l.max_frames))
+      refuse(plan.frame_every_where, "the run would render " + figure(budget.frames) +
+                                         " frames, more than limits.max_frames = " + figure(l.max_frames) +
+                                         "; give a longer interval or raise limits.max_frames");
+  }
+}
+
+// Particles (exact), bonds and bytes of every flexible body, against the scene's limits.
+void check_particles(const SceneDef& scene, SceneBudget& budget) {
+  const LimitsDef& l = scene.limits;
+  for (const FlexBodyDef& flex : scene.flex_bodies) {
+    // the grid must fit its 32-bit indices and be scanned in bounded time
+    const Vec2 extent = grid_extent_cells(flex.shape, flex.grid_spacing);
+    if (!(extent.maxCoeff() <= 2e9))
+      refuse(flex_key(flex, "grid_spacing"), "the grid of flexible body '" + flex.name + "' would span " +
+                                                 figure(extent.maxCoeff()) +
+                                                 " cells across, more than 2e9; raise grid_spacing");
+    const GridFrame frame = grid_frame(flex.shape, flex.grid_spacing);
+    const double work = grid_scan_work(flex.shape, flex.holes, frame);
+    if (!(work <= l.max_grid_rows))
+      refuse(flex_key(flex, "grid_spacing"), "placing the particles of flexible body '" + flex.name +
+                                                 "' would scan " + figure(work) +
+                                                 " grid rows (rows x shapes, plus the rows polygon edges span), "
+                                                 "more than limits.max_grid_rows = " + figure(l.max_grid_rows) +
+                                                 "; raise grid_spacing or simplify the shape");
+    // the exact count, by the scan that fills the grid
+    const double particles = static_cast<double>(count_grid_cells(flex.shape, flex.holes, frame));
+    const double neighbours = neighbours_per_particle(flex);
+    budget.particles += particles;
+    budget.bonds += particles * neighbours / 2;
+    budget.memory += particles * (kBytesPerParticle + neighbours * kBytesPerNeighbor);
+    if (!(budget.particles <= l.max_particles))
+      refuse(flex_key(flex, "grid_spacing"),
+             "flexible body '" + flex.name + "' has " + figure(particles) + " particles" +
+                 (scene.flex_bodies.size() > 1 ? ", bringing the scene to " + figure(budget.particles) : std::string()) +
+                 ", more than limits.max_particles = " + figure(l.max_particles) +
+                 " for the whole scene; raise grid_spacing or limits.max_particles");
+  }
+  const double cap = memory_cap(l);
+  if (!(budget.memory <= cap)) {
+    SourceLocation where = scene.locate("limits.max_memory");
+    if (scene.origin.count("limits.max_memory") == 0 && !scene.flex_bodies.empty())
+      where = flex_key(scene.flex_bodies.front(), "grid_spacing");
+    refuse(where, "the flexible bodies need about " + figure(budget.memory / 1e9) + " GB (" + figure(budget.particles) +
+                      " particles, " + figure(budget.bonds) + " bonds), more than the memory limit of " +
+                      figure(cap / 1e9) + " GB; raise grid_spacing, lower horizon_ratio, or set limits.max_memory (bytes)");
+  }
+}
+
+void check_threads(const SceneDef& scene, const RunPlan& plan) {
+  const int cap = thread_cap(scene.limits);
+  const std::string why = " threads, more than " + std::to_string(cap) + " (" +
+                          (scene.limits.max_threads > 0 ? std::string("limits.max_threads")
+                                                        : "4 x the " + std::to_string(machine_cores()) +
+                                                              " cores of this machine; limits.max_threads raises it") +
+                          ")";
+  if (scene.solver.threads > cap)
+    refuse(scene.locate("solver.threads"), "solver.threads asks for " + std::to_string(scene.solver.threads) + why);
+  if (plan.threads > cap) refuse(plan.threads_where, "asks for " + std::to_string(plan.threads) + why);
+}
+
+}  // namespace
+
+int machine_cores() {
+  const unsigned n = std::thread::hardware_concurrency();
+  return n > 0 ? static_cast<int>(n) : 1;
+}
+
+int thread_cap(const LimitsDef& limits) { return limits.max_threads > 0 ? limits.max_threads : 4 * machine_cores(); }
+
+double memory_cap(const LimitsDef& limits) {
+  if (limits.max_memory > 0.0) return limits.max_memory;
+  // 80% of what the machine has; half of what this process may map (the address space also holds
+  // the program, thread stacks, allocator arenas and vectors while they grow)
+  double available = 0.8 * static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
+  struct rlimit limit {};
+  if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+    available = std::min(available, 0.5 * static_cast<double>(limit.rlim_cur));
+  return available > 0.0 ? available : 1e9;
+}
+
+SceneBudget check_scene_budget(const SceneDef& scene, const RunPlan& plan) {
+  SceneBudget budget;
+  check_time(scene, plan, budget);
+  check_threads(scene, plan);
+  check_particles(scene, budget);
+  return budget;
+}
+
+}  // namespace periflex

@@ -1,0 +1,53 @@
+// The cost of running a scene, computed before anything big is allocated, against the scene's
+// [limits]: particles (counted exactly, by the scan that later fills them), bonds, bytes of
+// memory for all flexible bodies together, steps, series.csv rows, rendered frames and threads.
+// It also checks the values that only make sense together: dt against end_time, the output and
+// frame interval against dt. A scene over a limit is refused with InputError naming the figure,
+// the limit and the key (or command-line flag) to change.
+//
+//   RunPlan plan;                       // what the command line adds
+//   plan.frame_every = 0.01;
+//   const SceneBudget budget = check_scene_budget(scene, plan);
+#pragma once
+
+#include "core/error.h"
+#include "scene/scene_def.h"
+
+namespace periflex {
+
+// What a command adds to the scene's own cost.
+struct RunPlan {
+  double frame_every = 0.0;       // simulated seconds between rendered frames; 0: no frames
+  SourceLocation frame_every_where;
+  int threads = 0;                // --threads; 0: not given
+  SourceLocation threads_where;
+};
+
+// The figures checked, for reports and tests.
+struct SceneBudget {
+  double particles = 0.0;   // all flexible bodies, exact
+  double bonds = 0.0;       // an upper bound: particles x neighbours within the reach / 2
+  double memory = 0.0;      // bytes of particle and bond data
+  double steps = 0.0;       // end_time / dt (fixed-step integrators)
+  double rows = 0.0;        // series.csv rows
+  double frames = 0.0;      // rendered frames
+};
+
+// Bytes one particle and one stored neighbour (each bond is held from both ends) cost,
+// measured on glass_branching at two grid spacings and two horizons (about 100 and 28 bytes;
+// the rest is the margin for integrator stages and snapshots).
+constexpr double kBytesPerParticle = 400.0;
+constexpr double kBytesPerNeighbor = 32.0;
+
+// Cores of this machine (at least 1).
+int machine_cores();
+// The largest thread count accepted: limits.max_threads, or 4 x the cores.
+int thread_cap(const LimitsDef& limits);
+// The memory budget in bytes: limits.max_memory, or the smaller of 80% of physical memory and
+// half the address-space limit of this process.
+double memory_cap(const LimitsDef& limits);
+
+// Checks the scene (and the plan) against its limits; throws InputError. Returns the figures.
+SceneBudget check_scene_budget(const SceneDef& scene, const RunPlan& plan = {});
+
+}  // namespace periflex

@@ -272,6 +272,9 @@ case "$case_name" in
     sleep 1.5
     read -r ig gx gy < <(state grabbed)
     t2=$(state time)
+    # the spring is drawn with its force while held
+    force=$(state spring_force)
+    [[ -n "$force" ]] && holds "$force > 0" || fail "no spring force shown while dragging"
     xdotool mouseup 1
     [[ "$ig" == "$i1" ]] || fail "grabbed particle $ig, pointed at $i1"
     moved=$(awk -v a="$px1" -v b="$py1" -v c="$gx" -v d="$gy" 'BEGIN { print sqrt((c-a)^2 + (d-b)^2) }')

@@ -524,7 +524,7 @@ int GuiApp::run() {
 
     {
       // ImGui's current context is process-wide (see render/renderer.h)
-      std::lock_guard<std::mutex> imgui_lock(imgui_context_mutex());
+      ImGuiContextLock imgui_lock;
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();

@@ -10,7 +10,7 @@ namespace periflex {
 
 FrameOverlay::FrameOverlay() {
   // ImGui's current context is process-wide: create ours under the shared lock, then restore
-  std::lock_guard<std::mutex> lock(imgui_context_mutex());
+  ImGuiContextLock lock;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   context_ = ImGui::CreateContext();
   ImGui::SetCurrentContext(context_);
@@ -28,7 +28,7 @@ FrameOverlay::FrameOverlay() {
 
 FrameOverlay::~FrameOverlay() {
   if (!context_) return;
-  std::lock_guard<std::mutex> lock(imgui_context_mutex());
+  ImGuiContextLock lock;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(context_);
   ImGui_ImplOpenGL3_Shutdown();
@@ -39,7 +39,7 @@ FrameOverlay::~FrameOverlay() {
 void FrameOverlay::draw(Renderer& renderer, const Snapshot& snapshot, const RenderSettings& settings,
                         int width, int height) {
   if (!settings.show_overlay) return;
-  std::lock_guard<std::mutex> lock(imgui_context_mutex());
+  ImGuiContextLock lock;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(context_);
   // one frame of our own context, sized to the target in pixels

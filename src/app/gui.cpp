@@ -13,6 +13,7 @@
 #include "app/event_log.h"
 #include "app/gui_app.h"
 #include "app/gui_script.h"
+#include "app/key_presses.h"
 #include "app/sim_worker.h"
 #include "core/error.h"
 #include "core/resources.h"
@@ -80,6 +81,7 @@ int run_gui(const GuiOptions& options) {
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the current directory
   ImGui::StyleColorsDark();
+  install_key_presses(window);  // before ImGui's callbacks, which chain to it
   ImGui_ImplGlfw_InitForOpenGL(window, true);
   ImGui_ImplOpenGL3_Init("#version 330");
 

@@ -14,6 +14,7 @@
 #include <mutex>
 #include <thread>
 
+#include "app/key_presses.h"
 #include "app/picking.h"
 #include "app/view_fit.h"
 #include "core/error.h"
@@ -312,17 +313,22 @@ void GuiApp::evaluate_expectation(const ScriptAction& a) {
 void GuiApp::handle_input(int fb_width, int fb_height) {
   ImGuiIO& io = ImGui::GetIO();
   using Kind = SimCommand::Kind;
-  if (!io.WantCaptureKeyboard) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_SPACE, false)) send(SimCommand::make(Kind::kToggleRun, "key"));
-    if (ImGui::IsKeyPressed(GLFW_KEY_RIGHT, true)) send(SimCommand::make(Kind::kStep, "key"));
-    if (ImGui::IsKeyPressed(GLFW_KEY_BACKSPACE, false)) send(SimCommand::make(Kind::kReset, "key"));
-    if (ImGui::IsKeyPressed(GLFW_KEY_F, false)) {
+  // every press since the last frame, however short (key_presses.h); none while a text field
+  // has the keyboard
+  for (const KeyPress& k : take_key_presses()) {
+    if (io.WantCaptureKeyboard) continue;
+    const bool ctrl = (k.mods & GLFW_MOD_CONTROL) != 0;
+    if (k.key == GLFW_KEY_RIGHT) send(SimCommand::make(Kind::kStep, "key"));  // repeats when held
+    if (k.repeat) continue;
+    if (k.key == GLFW_KEY_SPACE) send(SimCommand::make(Kind::kToggleRun, "key"));
+    if (k.key == GLFW_KEY_BACKSPACE) send(SimCommand::make(Kind::kReset, "key"));
+    if (k.key == GLFW_KEY_F && !ctrl) {
       fit_pending_ = true;
       follow_ = -1;
       log_.add("fit view (key)");
     }
-    if (ImGui::IsKeyPressed(GLFW_KEY_S, false)) pending_screenshot_ = default_screenshot_name();
-    if (io.KeyCtrl && ImGui::IsKeyPressed(GLFW_KEY_Q, false)) {
+    if (k.key == GLFW_KEY_S && !ctrl) pending_screenshot_ = default_screenshot_name();
+    if (k.key == GLFW_KEY_Q && ctrl) {
       log_.add("quit (key)");
       quit_ = true;
     }
@@ -524,7 +530,7 @@ int GuiApp::run() {
 
     {
       // ImGui's current context is process-wide (see render/renderer.h)
-      std::lock_guard<std::mutex> imgui_lock(imgui_context_mutex());
+      ImGuiContextLock imgui_lock;
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();

@@ -68,7 +68,7 @@ void OffscreenRenderer::Impl::draw(const Snapshot& snapshot, const Camera& camer
 
 void OffscreenRenderer::Impl::draw_overlay(const Snapshot& snapshot, const RenderSettings& settings) {
   // ImGui's current context is process-wide: switch to ours under the shared lock, then restore
-  std::lock_guard<std::mutex> lock(imgui_context_mutex());
+  ImGuiContextLock lock;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   ImGui::SetCurrentContext(imgui);
   ImGuiIO& io = ImGui::GetIO();
@@ -95,7 +95,7 @@ OffscreenRenderer::OffscreenRenderer(int width, int height, int samples, const s
   m.renderer = std::make_unique<Renderer>(resource_root);
 
   // an ImGui context for the overlay only: no input, no settings file
-  std::lock_guard<std::mutex> lock(imgui_context_mutex());
+  ImGuiContextLock lock;
   ImGuiContext* previous = ImGui::GetCurrentContext();
   m.imgui = ImGui::CreateContext();
   ImGui::SetCurrentContext(m.imgui);
@@ -115,7 +115,7 @@ OffscreenRenderer::~OffscreenRenderer() {
   Impl& m = *impl_;
   m.egl.make_current();
   if (m.imgui) {
-    std::lock_guard<std::mutex> lock(imgui_context_mutex());
+    ImGuiContextLock lock;
     ImGuiContext* previous = ImGui::GetCurrentContext();
     ImGui::SetCurrentContext(m.imgui);
     ImGui_ImplOpenGL3_Shutdown();

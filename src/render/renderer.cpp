@@ -44,6 +44,21 @@ std::mutex& imgui_context_mutex() {
 }
 
 namespace {
+thread_local bool imgui_lock_held = false;  // this thread holds imgui_context_mutex
+}  // namespace
+
+ImGuiContextLock::ImGuiContextLock() {
+  if (imgui_lock_held) throw std::logic_error("the ImGui context lock was taken twice on one thread");
+  imgui_context_mutex().lock();
+  imgui_lock_held = true;
+}
+
+ImGuiContextLock::~ImGuiContextLock() {
+  imgui_lock_held = false;
+  imgui_context_mutex().unlock();
+}
+
+namespace {
 
 // colours of the picture, chosen to stay readable over the dark default background
 constexpr Rgba8 kGroundFill{78, 80, 88, 255}, kGroundEdge{140, 142, 150, 255};

@@ -26,6 +26,17 @@ bool parse_field_name(const std::string& name, ColorField& field);
 // holds this mutex from ImGui::SetCurrentContext/NewFrame until ImGui_ImplOpenGL3_RenderDrawData.
 std::mutex& imgui_context_mutex();
 
+// Holds imgui_context_mutex for a scope. Taking it again on a thread that already holds it
+// throws std::logic_error instead of freezing the program for good (std::mutex is not
+// recursive): a drawing path that needs the lock must run outside a locked ImGui frame.
+class ImGuiContextLock {
+ public:
+  ImGuiContextLock();
+  ~ImGuiContextLock();
+  ImGuiContextLock(const ImGuiContextLock&) = delete;
+  ImGuiContextLock& operator=(const ImGuiContextLock&) = delete;
+};
+
 struct RenderSettings {
   ColorField field = ColorField::kDamage;
   bool auto_range = true;          // range from the data each frame

@@ -98,20 +98,26 @@ quit() {
   ((code == 0)) || fail "exit code $code"
 }
 
-# key presses held for 0.1 s each, as a hand holds them (Dear ImGui 1.86 reads the keys held
-# at each frame, so a press and release within one frame would go unseen); KEY or MOD+KEY
+# key presses, KEY or MOD+KEY, each held for HOLD seconds (0.1 by default, as a quick tap)
 key() {
   local k
   for k in "$@"; do
-    xdotool keydown ${k//+/ } && sleep 0.1 && xdotool keyup $(echo ${k//+/ } | awk '{ for (i = NF; i > 0; --i) printf "%s ", $i }') ||
+    xdotool keydown ${k//+/ } && sleep "${HOLD:-0.1}" &&
+      xdotool keyup $(echo ${k//+/ } | awk '{ for (i = NF; i > 0; --i) printf "%s ", $i }') ||
       fail "xdotool key $k"
     sleep 0.1
   done
   sleep 0.2
 }
+# a quick tap: a shortcut must not miss a press shorter than a frame
+tap() { HOLD=0.02 key "$@"; }
+# Keys into a text field are read by Dear ImGui 1.86 itself, which sees only the keys held at
+# each frame: they are held for 0.3 s, longer than a frame under load (and shorter than the X
+# server's auto-repeat delay)
+field_key() { HOLD=0.3 key "$@"; }
 # replaces the text of the active field
 retype() {
-  key ctrl+a BackSpace
+  field_key ctrl+a BackSpace
   xdotool type --delay 30 "$1" || fail "typing $1"
   sleep 0.2
 }
@@ -128,10 +134,10 @@ record() {
   click export_header
   click record_path
   retype "$target"
-  key Return
+  field_key Return
   click record_interval
   retype 0.02
-  key Return
+  field_key Return
   click start_recording
   wait_until 30 "recording to start (Stop recording shown)" '[[ -n "$(centre stop_recording)" ]]'
   # the swinging pendulum would make the view grow: not while recording
@@ -171,33 +177,34 @@ case "$case_name" in
     [[ "$size" == 1024x768 ]] || fail "movie frames of $size, the window is 1024x768"
     ;;
   keys)
+    # the shortcuts as quick taps of 20 ms, shorter than a frame may take
     start flexible_pendulum.toml
     # the pointer over the picture, away from the pendulum
     xdotool mousemove --window "$window" 1200 100
     wait_until 10 "running at start" '[[ "$(state running)" == 1 ]]'
-    key space
+    tap space
     wait_until 10 "Space to pause" '[[ "$(state running)" == 0 ]]'
     sleep 0.3
     s0=$(state step)
-    key Right
+    tap Right
     wait_until 10 "Right to take one step" '(( $(state step) == s0 + 1 ))'
-    key Right
-    key Right
+    tap Right
+    tap Right
     wait_until 10 "two more steps" '(( $(state step) == s0 + 3 ))'
     [[ "$(state running)" == 0 ]] || fail "stepping resumed the run"
-    key BackSpace
+    tap BackSpace
     wait_until 10 "Backspace to reset to step 0" '(( $(state step) == 0 ))'
     holds "$(state time) == 0" || fail "time after reset is $(state time)"
     # Step N: 250 steps at once
     click step_count
     retype 250
-    key Return
+    field_key Return
     click step_n
     wait_until 20 "Step N to take 250 steps" '(( $(state step) == 250 ))'
     # Step to t: 0.01013 s is not a whole number of steps of 2.5e-5 s: the first step after it
     click step_to_time
     retype 0.01013
-    key Return
+    field_key Return
     click step_to
     wait_until 20 "Step to t to reach step 406" '(( $(state step) == 406 ))'
     holds "$(state time) >= 0.01013 && $(state time) < 0.01013 + 2.5e-5" || fail "time $(state time) after Step to t"
@@ -205,7 +212,7 @@ case "$case_name" in
     (( $(state step) == 406 )) && [[ "$(state running)" == 0 ]] || fail "stepping went on past the time asked"
     # the pointer back over the picture for the keys
     xdotool mousemove --window "$window" 1200 100
-    key space
+    tap space
     wait_until 10 "Space to run again" '[[ "$(state running)" == 1 ]] && (( $(state step) > 10 ))'
     quit
     ;;
@@ -216,7 +223,7 @@ case "$case_name" in
     retype 0.25
     # not applied before Enter
     holds "$(state bond_damping) == $before" || fail "bond damping changed before Enter"
-    key Return
+    field_key Return
     wait_until 10 "bond damping 0.25 applied" 'holds "$(state bond_damping) == 0.25"'
     grep -q "settings: .*(ui)" "$log" || fail "the change is not in the log"
     [[ "$(state running)" == 1 ]] || fail "the run stopped"
@@ -228,7 +235,7 @@ case "$case_name" in
     dt0=$(state dt)
     click dt
     retype 2e-6
-    key Return
+    field_key Return
     wait_until 10 "the refusal under the dt field" '[[ -n "$(centre dt_refusal)" ]]'
     holds "$(state dt) == $dt0" || fail "dt changed to $(state dt)"
     dt_bottom=$(awk '$1 == "widget" && $2 == "dt" { print $6 }' "$widgets")
@@ -238,7 +245,7 @@ case "$case_name" in
     # an accepted value clears it
     click dt
     retype 2e-7
-    key Return
+    field_key Return
     wait_until 10 "dt 2e-7 applied, the refusal gone" 'holds "$(state dt) == 2e-7" && [[ -z "$(centre dt_refusal)" ]]'
     quit
     ;;
@@ -272,6 +279,9 @@ case "$case_name" in
     sleep 1.5
     read -r ig gx gy < <(state grabbed)
     t2=$(state time)
+    # the spring is drawn with its force while held
+    force=$(state spring_force)
+    [[ -n "$force" ]] && holds "$force > 0" || fail "no spring force shown while dragging"
     xdotool mouseup 1
     [[ "$ig" == "$i1" ]] || fail "grabbed particle $ig, pointed at $i1"
     moved=$(awk -v a="$px1" -v b="$py1" -v c="$gx" -v d="$gy" 'BEGIN { print sqrt((c-a)^2 + (d-b)^2) }')

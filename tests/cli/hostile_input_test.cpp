@@ -299,6 +299,9 @@ TEST_P(HostileInput, RefusedLocatedBoundedAndContained) {
   ASSERT_TRUE(r.exited) << "killed by signal " << r.signal;
   EXPECT_EQ(r.exit_code, c.exit_code);
   EXPECT_NE(r.output.find(c.expect), std::string::npos) << "expected to read: " << c.expect;
+  // in the sanitizer build, no report from the program either
+  for (const char* report : {"runtime error:", "ERROR: AddressSanitizer", "ERROR: LeakSanitizer"})
+    EXPECT_EQ(r.output.find(report), std::string::npos) << report;
 
   // located: file:line:column and key, --set, or the flag; never "<input>"
   EXPECT_EQ(r.output.find("<input>"), std::string::npos);

@@ -38,6 +38,10 @@ constexpr double kEnergyGrowth = 1e3;
 constexpr double kNearSingular = 1e-4;
 // Steps between checks of the elastic energy (it costs about one force evaluation).
 constexpr long kElasticCheckInterval = 64;
+// Energy-balance change across a passage through a singular position, relative to the energy
+// scale, above which the motion is taken to have left its branch (on the double four-bar a
+// passage costs at most a few 1e-6 of the scale; a switch of branch about 1e-2).
+constexpr double kBranchEnergy = 1e-5;
 }  // namespace
 
 struct Simulation::Impl {
@@ -59,6 +63,15 @@ struct Simulation::Impl {
   double initial_total = 0.0;      // kinetic + potential at t = 0
   double energy_scale = 0.0;       // for the divergence check
   double critical_step = 0.0;      // min over the flexible bodies (0: none)
+  // passages through singular positions (rank monitoring): the energy balance when the rank
+  // first changed, checked when the rank is back, so a jump onto another branch is no silent
+  struct Passage {
+    bool open = false;
+    long seen_changes = 0;
+    size_t stable_dependent = 0;   // rows dependent outside passages
+    double entry_time = 0.0, entry_balance = 0.0;
+    std::vector<int> rows;         // every row left out during the passage
+  } passage;
   Timing timing;
   mutable std::shared_ptr<const SceneGeometry> geometry;
 
@@ -82,6 +95,7 @@ struct Simulation::Impl {
   void initialize();
   void advance(double h);
   void check_divergence();
+  void check_passage();
   Energies energies() const;
   double kinetic_energy() const {
     return 0.5 * (model->mass.array() * state.qd.array().square()).sum();
@@ -119,7 +133,7 @@ void Simulation::Impl::build_info() {
   info.constraint_equations = m.constraint_rows;
   info.redundant_equations = static_cast<int>(dynamics->dropped_rows().size());
   info.redundant_constraints = dynamics->dropped_blocks();
-  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) - dynamics->active_rows();
+  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) - dynamics->independent_rows();
   info.critical_time_step = critical_step;
 
   // what runs: only the parts this scene needs
@@ -162,8 +176,10 @@ void Simulation::Impl::build_info() {
   if (!info.redundant_constraints.empty()) {
     std::string names;
     for (const auto& n : info.redundant_constraints) names += (names.empty() ? "" : ", ") + n;
-    w.push_back(std::to_string(info.redundant_equations) + " redundant constraint equation(s) dropped from: " +
-                names);
+    w.push_back(std::to_string(info.redundant_equations) + " redundant constraint equation(s) at t = 0 in: " + names +
+                (dynamics->monitors_rank() ? " (left out only while they stay dependent: the rank is found again at "
+                                             "every solve)"
+                                           : " (dropped for the run)"));
   }
 }
 
@@ -206,6 +222,9 @@ void Simulation::Impl::initialize() {
   energy_scale = std::max(std::abs(kinetic_energy()) + std::abs(elastic_energy()) + weight * model->length_scale,
                           1e-12);
   integrator->reset();
+  passage = Passage{};
+  passage.seen_changes = dynamics->rank_changes();
+  passage.stable_dependent = dynamics->dropped_rows().size();
   initialized = true;
 }
 
@@ -259,6 +278,7 @@ void Simulation::Impl::advance(double h) {
     }
     ++steps;
     check_divergence();
+    if (dynamics->monitors_rank()) check_passage();
   } catch (const NumericalError& error) {
     NumericalDiagnostic d = error.diagnostic();
     if (d.step < 0) d.step = steps + 1;
@@ -366,6 +386,45 @@ void Simulation::Impl::check_divergence() {
                           what + number(mechanical) + " J grew beyond " + number(kEnergyGrowth) +
                               " times the energy available (" + number(available) + " J)",
                           remedy});
+  }
+}
+
+void Simulation::Impl::check_passage() {
+  const long changes = dynamics->rank_changes();
+  const auto& now = dynamics->dependent_now();
+  if (changes != passage.seen_changes) {
+    // the rank changed during this step: a singular position is near
+    passage.seen_changes = changes;
+    if (!passage.open) {
+      passage.open = true;
+      passage.entry_time = time;
+      passage.entry_balance = energies().balance;
+      passage.rows.clear();
+    }
+    for (int r : now) {
+      if (std::find(passage.rows.begin(), passage.rows.end(), r) == passage.rows.end()) passage.rows.push_back(r);
+    }
+    return;
+  }
+  if (!passage.open || now.size() > passage.stable_dependent) {
+    if (!passage.open) passage.stable_dependent = now.size();
+    return;
+  }
+  // the rank is back: the motion must have carried on without a jump in the energy balance
+  // (a switch of branch shows as energy gained or lost in a few steps)
+  passage.open = false;
+  passage.stable_dependent = now.size();
+  const double jump = energies().balance - passage.entry_balance;
+  if (std::abs(jump) > kBranchEnergy * energy_scale) {
+    std::string names;
+    for (const auto& n : dynamics->blocks_of(passage.rows)) names += (names.empty() ? "'" : ", '") + n + "'";
+    throw NumericalError({"singular configuration", steps, time,
+                          "the mechanism passed a singular position between t = " + number(passage.entry_time) +
+                              " and " + number(time) + " s (dependent: " + names +
+                              ") and its energy balance jumped by " + number(jump) +
+                              " J: the motion may have left the physical branch",
+                          "change solver.dt, or use dopri54 with projection; if the position is a true lock, "
+                          "change the geometry or the driver"});
   }
 }
 

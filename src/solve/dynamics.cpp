@@ -470,6 +470,57 @@ double Dynamics::project_positions(double t, Eigen::VectorXd& q, double toleranc
   return error;
 }
 
+double Dynamics::project_positions_from(double t, const Eigen::VectorXd& q_start, Eigen::VectorXd& q,
+                                        double tolerance, int max_iterations) {
+  if (!dense_) return project_positions(t, q, tolerance, max_iterations);
+  // the normals at the start, and the rows independent there (rank-revealing QR in the weights)
+  const int nr = static_cast<int>(reduced_cols_.size());
+  assemble_reduced(t, q_start);
+  Eigen::MatrixXd& j = dense_projection_.jacobian();
+  j.setZero();
+  for (const auto& e : reduced_j_) j(e.row(), e.col()) += e.value();
+  start_j_ = j;
+  select_.resize(nr);
+  for (int k = 0; k < nr; ++k) select_[k] = weight_[reduced_cols_[k]];
+  if (!dense_projection_.factorize(select_.data(), select_.data(), kRankThreshold))
+    throw_singular(t, q_start, "the position projection");
+  std::vector<int> rows;
+  for (int r = 0; r < static_cast<int>(active_.size()); ++r) {
+    if (!std::binary_search(dense_projection_.dependent().begin(), dense_projection_.dependent().end(), r))
+      rows.push_back(r);
+  }
+  const int m = static_cast<int>(rows.size());
+  residual_all(t, q);
+  double error = selected_violation();
+  for (int it = 0; it < max_iterations && error > tolerance; ++it) {
+    // (J_k W^-1 J_0^T) dmu = -Phi, dq = W^-1 J_0^T dmu
+    assemble_reduced(t, q);
+    j.setZero();
+    for (const auto& e : reduced_j_) j(e.row(), e.col()) += e.value();
+    shake_matrix_.resize(m, m);
+    shake_rhs_.resize(m);
+    for (int a = 0; a < m; ++a) {
+      shake_rhs_[a] = -phi_all_[rows[a]];
+      for (int b = 0; b < m; ++b) {
+        double v = 0.0;
+        for (int k = 0; k < nr; ++k) v += j(rows[a], k) * start_j_(rows[b], k) / select_[k];
+        shake_matrix_(a, b) = v;
+      }
+    }
+    shake_lu_.compute(shake_matrix_);
+    const Eigen::VectorXd mu = shake_lu_.solve(shake_rhs_);
+    if (!mu.allFinite()) throw_singular(t, q, "the position projection");
+    for (int k = 0; k < nr; ++k) {
+      double v = 0.0;
+      for (int b = 0; b < m; ++b) v += start_j_(rows[b], k) * mu[b];
+      q[reduced_cols_[k]] += v / select_[k];
+    }
+    residual_all(t, q);
+    error = selected_violation();
+  }
+  return error;
+}
+
 double Dynamics::selected_violation() const {
   const auto& left_out = dense_projection_.dependent();
   double worst = 0.0;

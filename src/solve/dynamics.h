@@ -80,6 +80,11 @@ class Dynamics final : public OdeSystem {
   void impose_prescribed(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) const;
   // Newton iterations on Phi(q, t) = 0 with the mass-weighted least change; returns max |Phi| after.
   double project_positions(double t, Eigen::VectorXd& q, double tolerance, int max_iterations);
+  // SHAKE: Newton on Phi(q + W^-1 Phi_q(q_start)^T mu, t) = 0, the correction along the
+  // constraint normals at the start of the step (what keeps symplectic Euler and Verlet
+  // symplectic with constraints); the nearest-point projection above for large systems.
+  double project_positions_from(double t, const Eigen::VectorXd& q_start, Eigen::VectorXd& q, double tolerance,
+                                int max_iterations);
   // Mass-weighted least change of qd with Phi_q qd + Phi_t = 0; returns max |change|.
   double project_velocities(double t, const Eigen::VectorXd& q, Eigen::VectorXd& qd);
 
@@ -164,6 +169,9 @@ class Dynamics final : public OdeSystem {
   bool dense_ = false;
   DenseConstraintSolver dense_acceleration_, dense_projection_;
   std::vector<int> last_dependent_;
+  Eigen::MatrixXd start_j_, shake_matrix_;
+  Eigen::VectorXd shake_rhs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> shake_lu_;
   long rank_changes_ = 0;
 
   double force_seconds_ = 0.0, constraint_seconds_ = 0.0;

@@ -54,6 +54,7 @@ struct Simulation::Impl {
 
   OdeState state;
   OdeState saved;                  // the state before the step in progress (kept allocated)
+  OdeState step_start, unprojected;  // positions at the step's start and before its projection (SHAKE)
   std::vector<double> chunk_sums;  // partial sums of check_divergence, per chunk
   double time = 0.0;
   long steps = 0;
@@ -247,14 +248,26 @@ void Simulation::Impl::advance(double h) {
     const double t0 = time;
     for (int k = 0; k < n; ++k) {
       const double t_next = (k + 1 == n) ? t0 + h : t0 + h * (k + 1) / n;
-      integrator->step(*dynamics, time, t_next - time, state);
+      const double step = t_next - time;
+      const bool shake = integrator->is_symplectic() && dynamics->correction().method == CorrectionDef::Method::kProjection;
+      if (shake) step_start.q = state.q;
+      integrator->step(*dynamics, time, step, state);
       time = t_next;
       dynamics->impose_prescribed(time, state.q, state.qd);
 
       // coordinate projection after the step
       const CorrectionDef& c = dynamics->correction();
       if (c.method == CorrectionDef::Method::kProjection && dynamics->has_constraints()) {
-        const double residual = dynamics->project_positions(time, state.q, c.tolerance, c.max_iterations);
+        // symplectic integrators: SHAKE then RATTLE. The position correction runs along the
+        // constraint normals at the start of the step and is a change of the velocity that
+        // drifted, so the velocity takes it too before its own projection. A correction along
+        // the normals at the end (the nearest point) instead turns part of the centripetal
+        // velocity into tangential speed: energy grows by (h v / L)^2 per step.
+        if (shake) unprojected.q = state.q;
+        const double residual =
+            shake ? dynamics->project_positions_from(time, step_start.q, state.q, c.tolerance, c.max_iterations)
+                  : dynamics->project_positions(time, state.q, c.tolerance, c.max_iterations);
+        if (shake) state.qd += (state.q - unprojected.q) / step;
         if (residual > 1e3 * c.tolerance) {
           throw NumericalError({"constraint violation", -1, time,
                                 "the projection did not converge (max |Phi| = " + number(residual) + " in '" +

@@ -520,7 +520,10 @@ std::vector<std::string> Simulation::probe_columns() const {
   std::vector<std::string> columns;
   for (const auto& p : impl_->model->probes) {
     for (const char* c : {"x", "y", "vx", "vy"}) columns.push_back("probe." + p.name + "." + c);
-    if (!p.is_particle()) columns.push_back("probe." + p.name + ".angle");
+    if (!p.is_particle()) {
+      columns.push_back("probe." + p.name + ".angle");
+      columns.push_back("probe." + p.name + ".omega");
+    }
   }
   return columns;
 }
@@ -553,7 +556,8 @@ Sample Simulation::sample() const {
     } else {
       const Vec2 x = p.point.position(s.state.q);
       const Vec2 v = p.point.velocity(s.state.q, s.state.qd);
-      out.probe_values.insert(out.probe_values.end(), {x.x(), x.y(), v.x(), v.y(), p.point.angle(s.state.q)});
+      out.probe_values.insert(out.probe_values.end(), {x.x(), x.y(), v.x(), v.y(), p.point.angle(s.state.q),
+                                                       p.point.angular_velocity(s.state.qd)});
     }
   }
   return out;

@@ -55,7 +55,7 @@ bool DenseConstraintSolver::factorize(const double* w, const double* select, dou
   positive_ = true;
   for (int c = 0; c < n_; ++c) {
     s_[c] = 1.0 / std::sqrt(select[c]);
-    positive_ = positive_ && w[c] > 0.0;
+    positive_ = positive_ && w[c] == select[c];
   }
   for (int r = 0; r < m_; ++r) {
     for (int c = 0; c < n_; ++c) a_(c, r) = j_(r, c) * s_[c];

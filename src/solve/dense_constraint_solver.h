@@ -10,9 +10,9 @@
 // Rows are re-selected at every factorisation, so a mechanism that passes a singular position
 // loses the rows only while it is there and gets them back afterwards.
 //
-// With every weight positive the QR itself solves the system (z = W^-1/2 x,
-// x = b - Q1 (Q1^T b - R11^-T e~)); with zero weights (massless bodies) a dense LU of the
-// selected rows' augmented matrix does. Buffers are sized once by resize(): no allocation in a
+// When the weights are the selection weights the QR itself solves the system (z = W^-1/2 x,
+// x = b - Q1 (Q1^T b - R11^-T e~)); otherwise (massless or nearly massless bodies, whose
+// selection weight is raised) a dense LU of the selected rows' augmented matrix does. Buffers are sized once by resize(): no allocation in a
 // solve of the positive-weight path.
 #pragma once
 
@@ -30,7 +30,7 @@ class DenseConstraintSolver {
   // The Jacobian (m x n) to fill before factorize().
   Eigen::MatrixXd& jacobian() { return j_; }
   // Factorises for the diagonal w (zeros allowed) with rows selected in the metric of
-  // `select` (all positive; equal to w where w > 0). Rows with a scaled pivot below
+  // `select` (all positive). Rows with a scaled pivot below
   // `threshold` are dependent. False when the selected system is singular (a massless
   // coordinate the selected rows do not fix).
   bool factorize(const double* w, const double* select, double threshold);

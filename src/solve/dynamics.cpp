@@ -162,6 +162,15 @@ void Dynamics::analyse(double t) {
   inverse_mass_ = model_.mass.unaryExpr([](double m) { return m > 0.0 ? 1.0 / m : 0.0; });
   weight_ = Eigen::VectorXd::Zero(n);
   for (int k = 0; k < nc; ++k) weight_[constrained_[k]] = weight_c_[k];
+  // the metric the rank is judged in: masses, raised to a hundredth of the typical mass of their
+  // kind (a massless or nearly massless body would otherwise dominate the scaled rows and make
+  // independent joints look parallel)
+  selection_ = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < nc; ++k) {
+    const int c = constrained_[k];
+    const bool rotational = c < model_.rigid_coordinates && c % 3 == 2;
+    selection_[c] = std::max(model_.mass[c], 1e-2 * (rotational ? inertia_ref : mass_ref));
+  }
 
   // attachments solved by elimination, and what stays in the matrix
   condensed_.build(model_, active_index_, condense_);
@@ -284,7 +293,7 @@ bool Dynamics::solve_dense(const Eigen::VectorXd& w, const double* a, const doub
   rhs_.resize(nr + mr);
   for (int k = 0; k < nr; ++k) {
     diag_[k] = w[reduced_cols_[k]];
-    select_[k] = weight_[reduced_cols_[k]];
+    select_[k] = selection_[reduced_cols_[k]];
     rhs_[k] = a ? a[reduced_cols_[k]] : 0.0;
   }
   for (int r = 0; r < mr; ++r) rhs_[nr + r] = e[active_[reduced_rows_[r]]];
@@ -481,8 +490,12 @@ double Dynamics::project_positions_from(double t, const Eigen::VectorXd& q_start
   for (const auto& e : reduced_j_) j(e.row(), e.col()) += e.value();
   start_j_ = j;
   select_.resize(nr);
-  for (int k = 0; k < nr; ++k) select_[k] = weight_[reduced_cols_[k]];
-  if (!dense_projection_.factorize(select_.data(), select_.data(), kRankThreshold))
+  diag_.resize(nr);
+  for (int k = 0; k < nr; ++k) {
+    select_[k] = selection_[reduced_cols_[k]];
+    diag_[k] = weight_[reduced_cols_[k]];
+  }
+  if (!dense_projection_.factorize(diag_.data(), select_.data(), kRankThreshold))
     throw_singular(t, q_start, "the position projection");
   std::vector<int> rows;
   for (int r = 0; r < static_cast<int>(active_.size()); ++r) {
@@ -503,7 +516,7 @@ double Dynamics::project_positions_from(double t, const Eigen::VectorXd& q_start
       shake_rhs_[a] = -phi_all_[rows[a]];
       for (int b = 0; b < m; ++b) {
         double v = 0.0;
-        for (int k = 0; k < nr; ++k) v += j(rows[a], k) * start_j_(rows[b], k) / select_[k];
+        for (int k = 0; k < nr; ++k) v += j(rows[a], k) * start_j_(rows[b], k) / diag_[k];
         shake_matrix_(a, b) = v;
       }
     }
@@ -513,7 +526,7 @@ double Dynamics::project_positions_from(double t, const Eigen::VectorXd& q_start
     for (int k = 0; k < nr; ++k) {
       double v = 0.0;
       for (int b = 0; b < m; ++b) v += start_j_(rows[b], k) * mu[b];
-      q[reduced_cols_[k]] += v / select_[k];
+      q[reduced_cols_[k]] += v / diag_[k];
     }
     residual_all(t, q);
     error = selected_violation();

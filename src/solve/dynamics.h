@@ -147,6 +147,7 @@ class Dynamics final : public OdeSystem {
   std::vector<char> active_is_driver_;  // per active row
   Eigen::VectorXd mass_c_, weight_c_;  // masses and projection weights of the constrained coordinates
   Eigen::VectorXd weight_;             // projection weights by global coordinate
+  Eigen::VectorXd selection_;          // the metric of the rank decision (dense path)
   Eigen::VectorXd inverse_mass_;       // 1 / m by global coordinate (0 where m = 0)
   bool has_gravity_ = true;
 

@@ -262,15 +262,13 @@ class SceneBuilder {
     body.where = in.where();
     body.is_virtual = in.boolean("virtual", false);
 
-    // only a virtual body may be massless
+    // zero mass or inertia is fine where the constraints determine the motion (a point mass on a
+    // rod, a massless link); the model set-up names a body whose motion they leave undetermined
     body.mass = in.number("mass", body.mass);
     body.inertia = in.number("inertia", body.inertia);
     for (const char* key : {"mass", "inertia"}) {
       const double value = std::string(key) == "mass" ? body.mass : body.inertia;
       if (value < 0.0) in.fail(key, std::string(key) + " must not be negative, found " + format_number(value));
-      if (value == 0.0 && !body.is_virtual)
-        in.fail(key, std::string(key) + " must be positive, found 0: the motion of a body without " + key +
-                " is undetermined (only a virtual body, held by joints or attachments, may be massless)");
     }
 
     body.position = in.vec2("position", Vec2::Zero());

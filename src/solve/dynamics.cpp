@@ -27,9 +27,11 @@ const std::string& Dynamics::block_of_row(int row) const {
   return found->constraint->name();
 }
 
-std::vector<std::string> Dynamics::dropped_blocks() const {
+std::vector<std::string> Dynamics::dropped_blocks() const { return blocks_of(dropped_); }
+
+std::vector<std::string> Dynamics::blocks_of(const std::vector<int>& rows) const {
   std::vector<std::string> names;
-  for (int row : dropped_) {
+  for (int row : rows) {
     const std::string& name = block_of_row(row);
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }
@@ -160,9 +162,25 @@ void Dynamics::analyse(double t) {
   inverse_mass_ = model_.mass.unaryExpr([](double m) { return m > 0.0 ? 1.0 / m : 0.0; });
   weight_ = Eigen::VectorXd::Zero(n);
   for (int k = 0; k < nc; ++k) weight_[constrained_[k]] = weight_c_[k];
+  // the metric the rank is judged in: masses, raised to a hundredth of the typical mass of their
+  // kind (a massless or nearly massless body would otherwise dominate the scaled rows and make
+  // independent joints look parallel)
+  selection_ = Eigen::VectorXd::Zero(n);
+  for (int k = 0; k < nc; ++k) {
+    const int c = constrained_[k];
+    const bool rotational = c < model_.rigid_coordinates && c % 3 == 2;
+    selection_[c] = std::max(model_.mass[c], 1e-2 * (rotational ? inertia_ref : mass_ref));
+  }
 
   // attachments solved by elimination, and what stays in the matrix
   condensed_.build(model_, active_index_, condense_);
+  // a small rigid system is solved dense with its rank found at every solve: every row stays
+  // active, and the rows dependent at t0 are only left out while they stay dependent
+  dense_ = condensed_.empty() && rows > 0 && rows <= kDenseRows && nc <= kDenseCoordinates;
+  if (dense_) {
+    active_.resize(rows);
+    for (int r = 0; r < rows; ++r) active_[r] = active_index_[r] = r;
+  }
   reduced_col_.assign(n, -1);
   reduced_cols_.clear();
   for (int c : constrained_) {
@@ -180,6 +198,14 @@ void Dynamics::analyse(double t) {
     }
   }
   std::sort(reduced_rows_.begin(), reduced_rows_.end());
+  if (dense_) {
+    dense_acceleration_.resize(static_cast<int>(reduced_cols_.size()), static_cast<int>(reduced_rows_.size()));
+    dense_projection_.resize(static_cast<int>(reduced_cols_.size()), static_cast<int>(reduced_rows_.size()));
+    dense_acceleration_.set_late_rows(dropped_);
+    dense_projection_.set_late_rows(dropped_);
+    last_dependent_ = dropped_;
+    rank_changes_ = 0;
+  }
 
   lambda_ = Eigen::VectorXd::Zero(active_rows());
   active_is_driver_.assign(active_rows(), 0);
@@ -255,8 +281,35 @@ void Dynamics::velocity_residual_all(const Eigen::VectorXd& qd) {
   condensed_.velocity_residual(qd, nu_all_.data());
 }
 
+bool Dynamics::solve_dense(const Eigen::VectorXd& w, const double* a, const double* e,
+                           DenseConstraintSolver& solver, Eigen::VectorXd& z) {
+  // every row is active and reduced (no eliminated joints), so reduced row r is global row r
+  const int nr = static_cast<int>(reduced_cols_.size()), mr = static_cast<int>(reduced_rows_.size());
+  Eigen::MatrixXd& j = solver.jacobian();
+  j.setZero();
+  for (const auto& t : reduced_j_) j(t.row(), t.col()) += t.value();
+  diag_.resize(nr);
+  select_.resize(nr);
+  rhs_.resize(nr + mr);
+  for (int k = 0; k < nr; ++k) {
+    diag_[k] = w[reduced_cols_[k]];
+    select_[k] = selection_[reduced_cols_[k]];
+    rhs_[k] = a ? a[reduced_cols_[k]] : 0.0;
+  }
+  for (int r = 0; r < mr; ++r) rhs_[nr + r] = e[active_[reduced_rows_[r]]];
+  if (!solver.factorize(diag_.data(), select_.data(), kRankThreshold)) return false;
+  x_.resize(nr + mr);
+  solver.solve(rhs_.data(), rhs_.data() + nr, x_.data(), x_.data() + nr);
+  if (!x_.allFinite()) return false;
+  for (int k = 0; k < nr; ++k) z[reduced_cols_[k]] = x_[k];
+  return true;
+}
+
 bool Dynamics::solve_constrained(const Eigen::VectorXd& w, const double* a, const double* e, KktSolver& solver,
                                  Eigen::VectorXd& z) {
+  if (dense_) {
+    return solve_dense(w, a, e, &solver == &kkt_ ? dense_acceleration_ : dense_projection_, z);
+  }
   const int nr = static_cast<int>(reduced_cols_.size()), mr = static_cast<int>(reduced_rows_.size());
   diag_.resize(nr);
   rhs_.resize(nr + mr);
@@ -390,6 +443,11 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
       throw_singular(t, q, "the acceleration solve");
     const int nr = reduced_coordinates();
     for (int r = 0; r < reduced_rows(); ++r) lambda_[reduced_rows_[r]] = x_[nr + r];
+    // the rank as the run goes: count each change of the rows left out
+    if (dense_ && dense_acceleration_.dependent() != last_dependent_) {
+      last_dependent_ = dense_acceleration_.dependent();
+      ++rank_changes_;
+    }
     condensed_.multipliers(model_.mass, qdd, g_.data(), active_index_, lambda_);
 
     // drivers do work -lambda (Phi_q qd) on the system (power of the reaction -Phi_q^T lambda)
@@ -420,8 +478,76 @@ double Dynamics::project_positions(double t, Eigen::VectorXd& q, double toleranc
       throw_singular(t, q, "the position projection");
     for (int c : constrained_) q[c] += dz_[c];
     error = position_violation(t, q);
+    // with rank monitoring, converged once the rows this solve kept are satisfied (a row left
+    // out depends on them to first order; its residual still shows in position_violation)
+    if (dense_) error = selected_violation();
   }
   return error;
+}
+
+double Dynamics::project_positions_from(double t, const Eigen::VectorXd& q_start, Eigen::VectorXd& q,
+                                        double tolerance, int max_iterations) {
+  if (!dense_) return project_positions(t, q, tolerance, max_iterations);
+  // the normals at the start, and the rows independent there (rank-revealing QR in the weights)
+  const int nr = static_cast<int>(reduced_cols_.size());
+  assemble_reduced(t, q_start);
+  Eigen::MatrixXd& j = dense_projection_.jacobian();
+  j.setZero();
+  for (const auto& e : reduced_j_) j(e.row(), e.col()) += e.value();
+  start_j_ = j;
+  select_.resize(nr);
+  diag_.resize(nr);
+  for (int k = 0; k < nr; ++k) {
+    select_[k] = selection_[reduced_cols_[k]];
+    diag_[k] = weight_[reduced_cols_[k]];
+  }
+  if (!dense_projection_.factorize(diag_.data(), select_.data(), kRankThreshold))
+    throw_singular(t, q_start, "the position projection");
+  std::vector<int> rows;
+  for (int r = 0; r < static_cast<int>(active_.size()); ++r) {
+    if (!std::binary_search(dense_projection_.dependent().begin(), dense_projection_.dependent().end(), r))
+      rows.push_back(r);
+  }
+  const int m = static_cast<int>(rows.size());
+  residual_all(t, q);
+  double error = selected_violation();
+  for (int it = 0; it < max_iterations && error > tolerance; ++it) {
+    // (J_k W^-1 J_0^T) dmu = -Phi, dq = W^-1 J_0^T dmu
+    assemble_reduced(t, q);
+    j.setZero();
+    for (const auto& e : reduced_j_) j(e.row(), e.col()) += e.value();
+    shake_matrix_.resize(m, m);
+    shake_rhs_.resize(m);
+    for (int a = 0; a < m; ++a) {
+      shake_rhs_[a] = -phi_all_[rows[a]];
+      for (int b = 0; b < m; ++b) {
+        double v = 0.0;
+        for (int k = 0; k < nr; ++k) v += j(rows[a], k) * start_j_(rows[b], k) / diag_[k];
+        shake_matrix_(a, b) = v;
+      }
+    }
+    shake_lu_.compute(shake_matrix_);
+    const Eigen::VectorXd mu = shake_lu_.solve(shake_rhs_);
+    if (!mu.allFinite()) throw_singular(t, q, "the position projection");
+    for (int k = 0; k < nr; ++k) {
+      double v = 0.0;
+      for (int b = 0; b < m; ++b) v += start_j_(rows[b], k) * mu[b];
+      q[reduced_cols_[k]] += v / diag_[k];
+    }
+    residual_all(t, q);
+    error = selected_violation();
+  }
+  return error;
+}
+
+double Dynamics::selected_violation() const {
+  const auto& left_out = dense_projection_.dependent();
+  double worst = 0.0;
+  for (int row = 0; row < model_.constraint_rows; ++row) {
+    if (std::binary_search(left_out.begin(), left_out.end(), row)) continue;
+    worst = std::max(worst, std::abs(phi_all_[row]));
+  }
+  return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
 }
 
 double Dynamics::project_velocities(double t, const Eigen::VectorXd& q, Eigen::VectorXd& qd) {
@@ -444,9 +570,10 @@ double Dynamics::project_velocities(double t, const Eigen::VectorXd& q, Eigen::V
 
 double Dynamics::position_violation(double t, const Eigen::VectorXd& q) {
   if (active_.empty()) return 0.0;
+  // every row, the ones dropped as dependent included: their violation is part of the figure
   residual_all(t, q);
   double worst = 0.0;
-  for (int row : active_) worst = std::max(worst, std::abs(phi_all_[row]));
+  for (int row = 0; row < model_.constraint_rows; ++row) worst = std::max(worst, std::abs(phi_all_[row]));
   return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
 }
 

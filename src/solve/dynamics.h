@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "solve/condensed_attachments.h"
+#include "solve/dense_constraint_solver.h"
 #include "solve/integrator.h"
 #include "solve/kkt_solver.h"
 #include "solve/system_model.h"
@@ -50,6 +51,30 @@ class Dynamics final : public OdeSystem {
   const std::vector<int>& dropped_rows() const { return dropped_; }
   std::vector<std::string> dropped_blocks() const;
   int active_rows() const { return static_cast<int>(active_.size()); }
+  // Equations independent at t0 (all rows less the dependent ones).
+  int independent_rows() const { return model_.constraint_rows - static_cast<int>(dropped_.size()); }
+  // Small rigid systems (no eliminated attachments, at most kDenseRows equations): every
+  // solve is dense and finds the rank of the Jacobian again (see dense_constraint_solver.h),
+  // so all rows stay active and a row is left out only while it depends on the others.
+  bool monitors_rank() const { return dense_; }
+  // Rows left out of the last acceleration solve as dependent (rank monitoring), the
+  // smallest scaled pivot of that solve, and how often the set of left-out rows changed.
+  const std::vector<int>& dependent_now() const { return dense_acceleration_.dependent(); }
+  double smallest_pivot() const { return dense_ ? dense_acceleration_.smallest_pivot() : 1.0; }
+  long rank_changes() const { return rank_changes_; }
+  // Names of the blocks of the given global rows.
+  std::vector<std::string> blocks_of(const std::vector<int>& rows) const;
+  static constexpr int kDenseRows = 64;
+  static constexpr int kDenseCoordinates = 192;
+  // Scaled pivot below which a row counts as dependent while running: a row within about
+  // 0.06 degree of the others' span (in the mass metric) is left out rather than solved with an
+  // amplification above 1e3. Near a singular position the Jacobian's smallest pivot goes to
+  // zero in proportion to the distance from it; stages of a step that land that close would
+  // otherwise amplify the integration error by its inverse and carry the state onto another
+  // branch. Measured on the double four-bar (docs/solver.md): 1e-5 switches branch at
+  // dt = 1e-4; 1e-3 keeps every step size from 2.5e-2 to 1.25e-5 on the physical branch; 1e-2
+  // too, with a larger error from the steps spent without the row.
+  static constexpr double kRankThreshold = 1e-3;
   int constrained_coordinates() const { return static_cast<int>(constrained_.size()); }
   bool has_constraints() const { return !active_.empty(); }
 
@@ -72,10 +97,16 @@ class Dynamics final : public OdeSystem {
   void impose_prescribed(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) const;
   // Newton iterations on Phi(q, t) = 0 with the mass-weighted least change; returns max |Phi| after.
   double project_positions(double t, Eigen::VectorXd& q, double tolerance, int max_iterations);
+  // SHAKE: Newton on Phi(q + W^-1 Phi_q(q_start)^T mu, t) = 0, the correction along the
+  // constraint normals at the start of the step (what keeps symplectic Euler and Verlet
+  // symplectic with constraints); the nearest-point projection above for large systems.
+  double project_positions_from(double t, const Eigen::VectorXd& q_start, Eigen::VectorXd& q, double tolerance,
+                                int max_iterations);
   // Mass-weighted least change of qd with Phi_q qd + Phi_t = 0; returns max |change|.
   double project_velocities(double t, const Eigen::VectorXd& q, Eigen::VectorXd& qd);
 
-  // max |Phi| and max |Phi_q qd + Phi_t| over the active rows.
+  // max |Phi| over every row (dependent ones included) and max |Phi_q qd + Phi_t| over the
+  // active rows (every row with rank monitoring).
   double position_violation(double t, const Eigen::VectorXd& q);
   double velocity_violation(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
   // Blocks whose active rows are (nearly) dependent at (t, q): a rank-revealing QR of the
@@ -112,6 +143,10 @@ class Dynamics final : public OdeSystem {
   // x_ the reduced solution. False when the matrix is singular.
   bool solve_constrained(const Eigen::VectorXd& w, const double* a, const double* e, KktSolver& solver,
                          Eigen::VectorXd& z);
+  bool solve_dense(const Eigen::VectorXd& w, const double* a, const double* e, DenseConstraintSolver& solver,
+                   Eigen::VectorXd& z);
+  // max |Phi| over the rows the last projection solve kept (after residual_all).
+  double selected_violation() const;
   [[noreturn]] void throw_singular(double t, const Eigen::VectorXd& q, const std::string& during);
   const std::string& block_of_row(int row) const;
 
@@ -129,6 +164,7 @@ class Dynamics final : public OdeSystem {
   std::vector<char> active_is_driver_;  // per active row
   Eigen::VectorXd mass_c_, weight_c_;  // masses and projection weights of the constrained coordinates
   Eigen::VectorXd weight_;             // projection weights by global coordinate
+  Eigen::VectorXd selection_;          // the metric of the rank decision (dense path)
   Eigen::VectorXd inverse_mass_;       // 1 / m by global coordinate (0 where m = 0)
   bool has_gravity_ = true;
 
@@ -139,7 +175,7 @@ class Dynamics final : public OdeSystem {
   std::vector<int> reduced_cols_;  // reduced column -> global coordinate
   std::vector<int> reduced_rows_;  // reduced row -> active row
   Triplets reduced_j_, coupling_;
-  Eigen::VectorXd diag_, e_all_, nu_all_, dz_;
+  Eigen::VectorXd diag_, select_, e_all_, nu_all_, dz_;
   std::vector<int> active_index_work_;
 
   // work arrays
@@ -147,6 +183,14 @@ class Dynamics final : public OdeSystem {
   Eigen::VectorXd phi_all_, phi_t_all_, gamma_all_;
   Eigen::VectorXd g_, q_work_, qd_work_, rhs_, x_, lambda_;
   KktSolver kkt_, projection_kkt_;
+  // the dense path with rank monitoring (small rigid systems)
+  bool dense_ = false;
+  DenseConstraintSolver dense_acceleration_, dense_projection_;
+  std::vector<int> last_dependent_;
+  Eigen::MatrixXd start_j_, shake_matrix_;
+  Eigen::VectorXd shake_rhs_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> shake_lu_;
+  long rank_changes_ = 0;
 
   double force_seconds_ = 0.0, constraint_seconds_ = 0.0;
 };

@@ -40,6 +40,7 @@ class SymplecticEuler final : public Integrator {
  public:
   const std::string& name() const override { return name_; }
   int order() const override { return 1; }
+  bool is_symplectic() const override { return true; }
   void step(OdeSystem& system, double t, double dt, OdeState& s) override {
     system.derivative(t, s.q, s.qd, qdd_, power_);
     s.qd += dt * qdd_;
@@ -60,6 +61,7 @@ class VelocityVerlet final : public Integrator {
  public:
   const std::string& name() const override { return name_; }
   int order() const override { return 2; }
+  bool is_symplectic() const override { return true; }
   void step(OdeSystem& system, double t, double dt, OdeState& s) override {
     if (!cached_ || cached_time_ != t) system.derivative(t, s.q, s.qd, qdd_, power_);
     const Eigen::Vector3d power_start = power_;

@@ -40,6 +40,9 @@ class Integrator {
   virtual int order() const = 0;
   // Explicit integrators are bound by the critical step of stiff (peridynamic) parts.
   virtual bool is_explicit() const { return true; }
+  // Symplectic integrators (symplectic Euler, Verlet): a position projection after their
+  // step also corrects the velocity by the same change over the step (SHAKE / RATTLE).
+  virtual bool is_symplectic() const { return false; }
   // Adaptive integrators choose their own internal steps inside each call to step().
   virtual bool is_adaptive() const { return false; }
   // Advances s from t to t + dt.

@@ -39,6 +39,10 @@ constexpr double kEnergyGrowth = 1e3;
 constexpr double kNearSingular = 1e-4;
 // Steps between checks of the elastic energy (it costs about one force evaluation).
 constexpr long kElasticCheckInterval = 64;
+// Energy-balance change across a passage through a singular position, relative to the energy
+// scale, above which the motion is taken to have left its branch (on the double four-bar a
+// passage costs at most a few 1e-6 of the scale; a switch of branch about 1e-2).
+constexpr double kBranchEnergy = 1e-5;
 }  // namespace
 
 struct Simulation::Impl {
@@ -51,6 +55,7 @@ struct Simulation::Impl {
 
   OdeState state;
   OdeState saved;                  // the state before the step in progress (kept allocated)
+  OdeState step_start, unprojected;  // positions at the step's start and before its projection (SHAKE)
   std::vector<double> chunk_sums;  // partial sums of check_divergence, per chunk
   double time = 0.0;               // clock.time(), or the exact time a step landed on
   SimClock clock;
@@ -62,6 +67,15 @@ struct Simulation::Impl {
   double initial_gravity = 0.0;    // potential of gravity at t = 0
   double energy_scale = 0.0;       // for the divergence check
   double critical_step = 0.0;      // min over the flexible bodies (0: none)
+  // passages through singular positions (rank monitoring): the energy balance when the rank
+  // first changed, checked when the rank is back, so a jump onto another branch is no silent
+  struct Passage {
+    bool open = false;
+    long seen_changes = 0;
+    size_t stable_dependent = 0;   // rows dependent outside passages
+    double entry_time = 0.0, entry_balance = 0.0;
+    std::vector<int> rows;         // every row left out during the passage
+  } passage;
   Timing timing;
   mutable std::shared_ptr<const SceneGeometry> geometry;
 
@@ -86,6 +100,7 @@ struct Simulation::Impl {
   // one step from `time` to exactly t_end (h = t_end - time, split into sub-steps if needed)
   void advance(double t_end);
   void check_divergence();
+  void check_passage();
   Energies energies() const;
   double kinetic_energy() const {
     return 0.5 * (model->mass.array() * state.qd.array().square()).sum();
@@ -123,7 +138,7 @@ void Simulation::Impl::build_info() {
   info.constraint_equations = m.constraint_rows;
   info.redundant_equations = static_cast<int>(dynamics->dropped_rows().size());
   info.redundant_constraints = dynamics->dropped_blocks();
-  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) - dynamics->active_rows();
+  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) - dynamics->independent_rows();
   info.critical_time_step = critical_step;
 
   // what runs: only the parts this scene needs
@@ -166,8 +181,10 @@ void Simulation::Impl::build_info() {
   if (!info.redundant_constraints.empty()) {
     std::string names;
     for (const auto& n : info.redundant_constraints) names += (names.empty() ? "" : ", ") + n;
-    w.push_back(std::to_string(info.redundant_equations) + " redundant constraint equation(s) dropped from: " +
-                names);
+    w.push_back(std::to_string(info.redundant_equations) + " redundant constraint equation(s) at t = 0 in: " + names +
+                (dynamics->monitors_rank() ? " (left out only while they stay dependent: the rank is found again at "
+                                             "every solve)"
+                                           : " (dropped for the run)"));
   }
 }
 
@@ -212,6 +229,9 @@ void Simulation::Impl::initialize() {
   energy_scale = std::max(std::abs(kinetic_energy()) + std::abs(elastic_energy()) + weight * model->length_scale,
                           1e-12);
   integrator->reset();
+  passage = Passage{};
+  passage.seen_changes = dynamics->rank_changes();
+  passage.stable_dependent = dynamics->dropped_rows().size();
   initialized = true;
 }
 
@@ -235,14 +255,26 @@ void Simulation::Impl::advance(double t_end) {
     const double t0 = time;
     for (int k = 0; k < n; ++k) {
       const double t_next = (k + 1 == n) ? t_end : t0 + h * (k + 1) / n;
-      integrator->step(*dynamics, time, t_next - time, state);
+      const double step = t_next - time;
+      const bool shake = integrator->is_symplectic() && dynamics->correction().method == CorrectionDef::Method::kProjection;
+      if (shake) step_start.q = state.q;
+      integrator->step(*dynamics, time, step, state);
       time = t_next;
       dynamics->impose_prescribed(time, state.q, state.qd);
 
       // coordinate projection after the step
       const CorrectionDef& c = dynamics->correction();
       if (c.method == CorrectionDef::Method::kProjection && dynamics->has_constraints()) {
-        const double residual = dynamics->project_positions(time, state.q, c.tolerance, c.max_iterations);
+        // symplectic integrators: SHAKE then RATTLE. The position correction runs along the
+        // constraint normals at the start of the step and is a change of the velocity that
+        // drifted, so the velocity takes it too before its own projection. A correction along
+        // the normals at the end (the nearest point) instead turns part of the centripetal
+        // velocity into tangential speed: energy grows by (h v / L)^2 per step.
+        if (shake) unprojected.q = state.q;
+        const double residual =
+            shake ? dynamics->project_positions_from(time, step_start.q, state.q, c.tolerance, c.max_iterations)
+                  : dynamics->project_positions(time, state.q, c.tolerance, c.max_iterations);
+        if (shake) state.qd += (state.q - unprojected.q) / step;
         if (residual > 1e3 * c.tolerance) {
           throw NumericalError({"constraint violation", -1, time,
                                 "the projection did not converge (max |Phi| = " + number(residual) + " in '" +
@@ -266,6 +298,7 @@ void Simulation::Impl::advance(double t_end) {
     }
     ++steps;
     check_divergence();
+    if (dynamics->monitors_rank()) check_passage();
   } catch (const NumericalError& error) {
     NumericalDiagnostic d = error.diagnostic();
     if (d.step < 0) d.step = steps + 1;
@@ -379,6 +412,45 @@ void Simulation::Impl::check_divergence() {
   }
 }
 
+void Simulation::Impl::check_passage() {
+  const long changes = dynamics->rank_changes();
+  const auto& now = dynamics->dependent_now();
+  if (changes != passage.seen_changes) {
+    // the rank changed during this step: a singular position is near
+    passage.seen_changes = changes;
+    if (!passage.open) {
+      passage.open = true;
+      passage.entry_time = time;
+      passage.entry_balance = energies().balance;
+      passage.rows.clear();
+    }
+    for (int r : now) {
+      if (std::find(passage.rows.begin(), passage.rows.end(), r) == passage.rows.end()) passage.rows.push_back(r);
+    }
+    return;
+  }
+  if (!passage.open || now.size() > passage.stable_dependent) {
+    if (!passage.open) passage.stable_dependent = now.size();
+    return;
+  }
+  // the rank is back: the motion must have carried on without a jump in the energy balance
+  // (a switch of branch shows as energy gained or lost in a few steps)
+  passage.open = false;
+  passage.stable_dependent = now.size();
+  const double jump = energies().balance - passage.entry_balance;
+  if (std::abs(jump) > kBranchEnergy * energy_scale) {
+    std::string names;
+    for (const auto& n : dynamics->blocks_of(passage.rows)) names += (names.empty() ? "'" : ", '") + n + "'";
+    throw NumericalError({"singular configuration", steps, time,
+                          "the mechanism passed a singular position between t = " + number(passage.entry_time) +
+                              " and " + number(time) + " s (dependent: " + names +
+                              ") and its energy balance jumped by " + number(jump) +
+                              " J: the motion may have left the physical branch",
+                          "change solver.dt, or use dopri54 with projection; if the position is a true lock, "
+                          "change the geometry or the driver"});
+  }
+}
+
 Energies Simulation::Impl::energies() const {
   Energies e;
   e.kinetic = kinetic_energy();
@@ -473,7 +545,10 @@ std::vector<std::string> Simulation::probe_columns() const {
   std::vector<std::string> columns;
   for (const auto& p : impl_->model->probes) {
     for (const char* c : {"x", "y", "vx", "vy"}) columns.push_back("probe." + p.name + "." + c);
-    if (!p.is_particle()) columns.push_back("probe." + p.name + ".angle");
+    if (!p.is_particle()) {
+      columns.push_back("probe." + p.name + ".angle");
+      columns.push_back("probe." + p.name + ".omega");
+    }
   }
   return columns;
 }
@@ -506,7 +581,8 @@ Sample Simulation::sample() const {
     } else {
       const Vec2 x = p.point.position(s.state.q);
       const Vec2 v = p.point.velocity(s.state.q, s.state.qd);
-      out.probe_values.insert(out.probe_values.end(), {x.x(), x.y(), v.x(), v.y(), p.point.angle(s.state.q)});
+      out.probe_values.insert(out.probe_values.end(), {x.x(), x.y(), v.x(), v.y(), p.point.angle(s.state.q),
+                                                       p.point.angular_velocity(s.state.qd)});
     }
   }
   return out;

@@ -75,23 +75,20 @@ TEST(SliderCrank, DriverWorkClosesTheEnergyBalance) {
   std::printf("slider-crank: max |balance| %.3e J with |driver work| up to %.3e J\n", worst, largest_work);
 }
 
-TEST(SliderCrank, ToggleLockRaisesNumericalError) {
-  // with l = r the slider reaches the pivot at theta = 90 degrees and the Jacobian is singular
-  Simulation sim(slider_crank(0.1, 0.1, CorrectionDef::Method::kBaumgarte));
+TEST(SliderCrank, ToggleIsPassedOnTheContinuedBranch) {
+  // with l = r the slider reaches the pivot at theta = 90 degrees, where the Jacobian loses a
+  // row of rank and the rod could fold back over the crank; the driven motion carries on along
+  // x = 2 r cos(theta) (the branch with the same velocity), through this toggle and the next
+  Simulation sim(slider_crank(0.1, 0.1, CorrectionDef::Method::kProjection));
   sim.initialize();
-  bool thrown = false;
-  try {
-    sim.advance_to(0.5);
-  } catch (const NumericalError& e) {
-    thrown = true;
-    EXPECT_LE(sim.time(), 0.25 + 1e-3);  // it stopped at the lock, not after
-    std::printf("toggle: %s\n", e.what());
-    // the diagnosis names the lock and a joint of the loop
-    EXPECT_NE(std::string(e.what()).find("nearly singular"), std::string::npos) << e.what();
-    // the state left behind is the last good one
-    EXPECT_TRUE(std::isfinite(sim.sample().energies.kinetic));
+  double worst = 0.0;
+  for (int k = 1; k <= 100; ++k) {
+    sim.advance_to(0.01 * k);
+    const double theta = kOmega * sim.time();
+    worst = std::max(worst, std::abs(sim.sample().probe_values[0] - 2 * 0.1 * std::cos(theta)));
   }
-  EXPECT_TRUE(thrown);
+  std::printf("toggle slider-crank: max slider error over a turn %.3g m\n", worst);
+  EXPECT_LT(worst, 1e-6);
 }
 
 }  // namespace

@@ -178,7 +178,8 @@ case "$case_name" in
     ;;
   keys)
     # the shortcuts as quick taps of 20 ms, shorter than a frame may take
-    start flexible_pendulum.toml
+    # a longer run than the scene's 2 s, which a quiet machine finishes in about two seconds
+    start flexible_pendulum.toml --set solver.end_time=100
     # the pointer over the picture, away from the pendulum
     xdotool mousemove --window "$window" 1200 100
     wait_until 10 "running at start" '[[ "$(state running)" == 1 ]]'
@@ -217,7 +218,9 @@ case "$case_name" in
     quit
     ;;
   damping)
-    start flexible_pendulum.toml
+    # a longer run than the scene's 2 s: on a quiet machine it reaches its end (and pauses)
+    # in about two seconds of wall time, before the change is typed
+    start flexible_pendulum.toml --set solver.end_time=100
     before=$(state bond_damping)
     click bond_damping
     retype 0.25

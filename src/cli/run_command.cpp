@@ -110,10 +110,12 @@ int run_command(const RunOptions& requested) {
   SceneDef scene = load_run_scene(options);  // every flag, the scene's budget and the output paths
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
-  const std::string out_dir = options.out_dir.empty() ? "out/" + scene.name : options.out_dir;
+  // load_run_scene filled in the default out/<safe scene name> and checked the folder
+  const std::string out_dir = options.out_dir;
+  const std::string summary_path = out_dir + "/summary.json";
   ensure_directory(out_dir);
   // a summary left by an earlier run would speak for this one until it writes its own
-  std::filesystem::remove(out_dir + "/summary.json");
+  std::filesystem::remove(summary_path);
   if (options.movie_in_out_dir) options.movie_path = out_dir + "/movie.mp4";
   if (options.render && options.frames_dir.empty() && options.movie_path.empty()) options.frames_dir = out_dir + "/frames";
 
@@ -125,7 +127,6 @@ int run_command(const RunOptions& requested) {
   summary.scene_path = scene.path;
   summary.integrator = scene.solver.integrator;
   summary.dt = scene.solver.dt;
-  const std::string summary_path = out_dir + "/summary.json";
   write_summary(summary_path, info, summary);
 
   const bool has_particles = info.particles > 0;

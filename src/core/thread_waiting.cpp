@@ -6,12 +6,9 @@
 
 namespace periflex {
 
-bool waiting_policy_is_set() {
-  return std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr;
-}
-
 void restart_with_passive_waiting(char** argv) {
-  if (waiting_policy_is_set()) return;
+  // a user's own choice stands, and after the restart the variable is set: no second restart
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
   setenv("OMP_WAIT_POLICY", "passive", 0);
   // the same executable, whatever PATH or the current folder say
   ::execv("/proc/self/exe", argv);

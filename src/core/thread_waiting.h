@@ -18,7 +18,4 @@ namespace periflex {
 // with libgomp's default).
 void restart_with_passive_waiting(char** argv);
 
-// True when libgomp was started with passive waiting or a user's own choice (for reports).
-bool waiting_policy_is_set();
-
 }  // namespace periflex

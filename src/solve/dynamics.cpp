@@ -17,6 +17,17 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
 }  // namespace
 
+double MouseSpringForce::stored_energy(double t, const Eigen::VectorXd& q) const {
+  const Vec2 aim = target_at(t);
+  double energy = 0.0;
+  if (point.body >= 0) energy += 0.5 * stiffness * (aim - point.position(q)).squaredNorm();
+  for (size_t k = 0; k < particle_coordinates.size(); ++k) {
+    const int c = particle_coordinates[k];
+    energy += 0.5 * particle_stiffness[k] * (aim + offsets[k] - Vec2(q[c], q[c + 1])).squaredNorm();
+  }
+  return energy;
+}
+
 Dynamics::Dynamics(SystemModel& model) : model_(model) {}
 
 const std::string& Dynamics::block_of_row(int row) const {

@@ -38,6 +38,8 @@ struct MouseSpringForce {
     const double length = way.norm(), reach = speed * std::max(0.0, t - since);
     return speed <= 0.0 || reach >= length ? target : Vec2(from + way * (reach / length));
   }
+  // Energy the spring holds at (t, q): what it can still give to what it holds.
+  double stored_energy(double t, const Eigen::VectorXd& q) const;
 };
 
 class Dynamics final : public OdeSystem {

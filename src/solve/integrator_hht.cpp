@@ -85,7 +85,9 @@ class Hht final : public Integrator {
 
   // Newton iterations for a1; false when they do not converge.
   bool solve_step(OdeSystem& system, double t, double h, const OdeState& s) {
-    const double size = std::max({s.q.lpNorm<Eigen::Infinity>(), h * s.qd.lpNorm<Eigen::Infinity>(), 1e-12});
+    // the configuration's size, or the step's own motion when the body sits at the origin at rest
+    const double size = std::max({s.q.lpNorm<Eigen::Infinity>(), h * s.qd.lpNorm<Eigen::Infinity>(),
+                                  h * h * a0_.lpNorm<Eigen::Infinity>(), 1e-12});
     const double tolerance = kNewtonTolerance * size;
     a1_ = a0_;  // predictor: the acceleration carries over
     bool fresh_tangent = false;

@@ -386,7 +386,11 @@ void Simulation::Impl::check_divergence() {
   // (cheap), the kinetic plus elastic energy every kElasticCheckInterval steps (an instability that
   // grows the positions while the velocities stay small, e.g. Verlet exactly at its limit)
   const double fed = std::abs(state.work[kWorkExternal]) + std::abs(state.work[kWorkDriver]);
-  const double available = energy_scale + fed;
+  // a held mouse spring feeds its work a step late to the accounts: what it still holds counts
+  // too, or a grab of a body at rest (which holds nothing) would look like a divergence
+  const auto& mouse = dynamics->mouse_spring();
+  const double held = mouse ? mouse->stored_energy(time, state.q) : 0.0;
+  const double available = energy_scale + fed + held;
   const double kinetic = 0.5 * kinetic2;
   const bool check_elastic = steps % kElasticCheckInterval == 0;
   const double mechanical = check_elastic ? kinetic + elastic_energy() : kinetic;

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/sim_worker.h"
+#include "scene/scene_budget.h"
 #include "scene/scene_loader.h"
 
 namespace periflex {
@@ -35,8 +36,12 @@ class SimulationModel final : public SteppedModel {
 
 ModelFactory simulation_model_factory() {
   ModelFactory f;
+  // a scene picked or reloaded in the window meets the limits the command line enforces, before
+  // anything is built: a file edited to a million particles is refused, not allocated
   f.load = [](const std::string& path, const std::vector<std::string>& overrides) {
-    return load_scene(path, overrides);
+    SceneDef scene = load_scene(path, overrides);
+    check_scene_budget(scene);
+    return scene;
   };
   f.build = [](const SceneDef& scene) -> std::unique_ptr<SteppedModel> {
     return std::make_unique<SimulationModel>(scene);

@@ -28,18 +28,30 @@ TEST(LiveSettings, SwitchingToProjectionRemovesAccumulatedDrift) {
   EXPECT_LT(sim.sample().violation_velocity, 1e-8);
 }
 
-TEST(LiveSettings, MouseSpringPullsABodyAndItsWorkIsExternal) {
-  SceneDef scene = test::empty_scene("rk4", 1e-3, CorrectionDef::Method::kBaumgarte);
+// A 2 kg puck at rest at the origin, no gravity, over a run of `end_time`.
+SceneDef puck_scene(const std::string& integrator, double end_time) {
+  SceneDef scene = test::empty_scene(integrator, 1e-3, CorrectionDef::Method::kBaumgarte);
   scene.gravity = Vec2::Zero();
+  scene.solver.end_time = end_time;
   scene.bodies.push_back(test::body("puck", 2.0, 0.1, Vec2::Zero()));
-  Simulation sim(scene);
-  sim.initialize();
+  return scene;
+}
+
+// The puck grabbed 0.1 m right of its centre and pulled towards `target` (stiffness 0: the scene's).
+MouseSpring puck_grab(const Vec2& target, double stiffness = 0.0) {
   MouseSpring grab;
   grab.body = 0;
   grab.local_point = Vec2(0.1, 0.0);
-  grab.target = Vec2(1.0, 0.0);
-  grab.stiffness = 315.0;  // given: about 2 Hz for the 2 kg puck, still moving at t = 0.1
-  EXPECT_DOUBLE_EQ(sim.set_mouse_spring(grab), 315.0);
+  grab.target = target;
+  grab.stiffness = stiffness;
+  return grab;
+}
+
+TEST(LiveSettings, MouseSpringPullsABodyAndItsWorkIsExternal) {
+  Simulation sim(puck_scene("rk4", 1.0));
+  sim.initialize();
+  // given: about 2 Hz for the 2 kg puck, still moving at t = 0.1
+  EXPECT_DOUBLE_EQ(sim.set_mouse_spring(puck_grab(Vec2(1.0, 0.0), 315.0)), 315.0);
   sim.advance_to(0.1);
   Snapshot snap;
   sim.fill_snapshot(snap);
@@ -55,19 +67,11 @@ TEST(LiveSettings, MouseSpringPullsABodyAndItsWorkIsExternal) {
 }
 
 TEST(LiveSettings, MouseSpringOnARigidBodySettlesWithinATwentiethOfTheRun) {
-  SceneDef scene = test::empty_scene("rk4", 1e-3, CorrectionDef::Method::kBaumgarte);
-  scene.gravity = Vec2::Zero();
-  scene.solver.end_time = 1.0;
-  scene.bodies.push_back(test::body("puck", 2.0, 0.1, Vec2::Zero()));
-  Simulation sim(scene);
+  Simulation sim(puck_scene("rk4", 1.0));
   sim.initialize();
-  MouseSpring grab;
-  grab.body = 0;
-  grab.local_point = Vec2(0.1, 0.0);
-  grab.target = Vec2(1.0, 0.0);
   // mass times (2 pi 20 / end time)^2
   const double omega = 2.0 * 3.14159265358979 * 20.0;
-  EXPECT_NEAR(sim.set_mouse_spring(grab), 2.0 * omega * omega, 1e-6 * 2.0 * omega * omega);
+  EXPECT_NEAR(sim.set_mouse_spring(puck_grab(Vec2(1.0, 0.0))), 2.0 * omega * omega, 1e-6 * 2.0 * omega * omega);
   // by a tenth of the run the grab point sits on the target (the centre 0.1 m behind it)
   sim.advance_to(0.1);
   Snapshot snap;
@@ -82,17 +86,9 @@ TEST(LiveSettings, MouseSpringOnARigidBodySettlesWithinATwentiethOfTheRun) {
 TEST(LiveSettings, GrabbingARestingBodyIsNotADivergence) {
   for (const std::string integrator : {"symplectic_euler", "verlet", "rk4", "dopri54", "hht"}) {
     SCOPED_TRACE(integrator);
-    SceneDef scene = test::empty_scene(integrator, 1e-3, CorrectionDef::Method::kBaumgarte);
-    scene.gravity = Vec2::Zero();
-    scene.solver.end_time = 1.0;
-    scene.bodies.push_back(test::body("puck", 2.0, 0.1, Vec2::Zero()));
-    Simulation sim(scene);
+    Simulation sim(puck_scene(integrator, 1.0));
     sim.initialize();
-    MouseSpring grab;
-    grab.body = 0;
-    grab.local_point = Vec2(0.1, 0.0);
-    grab.target = Vec2(1.0, 0.5);
-    sim.set_mouse_spring(grab);
+    sim.set_mouse_spring(puck_grab(Vec2(1.0, 0.5)));
     for (int k = 0; k < 20; ++k) ASSERT_NO_THROW(sim.step()) << "step " << k + 1;
     Snapshot snap;
     sim.fill_snapshot(snap);

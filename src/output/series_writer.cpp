@@ -4,8 +4,8 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <stdexcept>
 
@@ -63,11 +63,13 @@ bool SeriesWriter::write(const Sample& s) {
 
   // Format the whole row first, then hand it to the file in one write and flush.
   line_.clear();
+  // the shortest text that reads back as the same double: a value taken from the file is the
+  // solver's, bit for bit (at most 24 characters: sign, 17 digits, point, exponent)
   char buffer[32];
   for (size_t k = 0; k < values.size(); ++k) {
-    std::snprintf(buffer, sizeof buffer, "%.12g", values[k]);
+    const auto written = std::to_chars(buffer, buffer + sizeof buffer, values[k]);
     if (k) line_ += ',';
-    line_ += buffer;
+    line_.append(buffer, written.ptr);
   }
   line_ += '\n';
   write_all(line_);

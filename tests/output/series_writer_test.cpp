@@ -5,7 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "output/series_writer.h"
 
@@ -53,6 +57,37 @@ TEST(SeriesWriter, EachRowOfHundredsOfProbesIsOneWriteCall) {
     ++rows;
   }
   EXPECT_EQ(rows, 5);
+}
+
+// A value read back from series.csv is the double the solver had, bit for bit: comparisons with a
+// reference at 1e-13 must not be limited by the file (12 significant digits lose 1e-12 relative).
+TEST(SeriesWriter, ValuesReadBackAreTheSameDoubles) {
+  const auto path = std::filesystem::current_path() / "series_writer_round_trip.csv";
+  const std::vector<double> probes = {1.0 / 3.0,  0.1 + 0.2, -2.0 / 7.0 * 1e-9, 1e300 / 3.0,
+                                      std::numeric_limits<double>::denorm_min(), 123456789.123456789, -0.0};
+  const double time = 0.1 * 3;  // 0.30000000000000004
+  std::vector<std::string> columns;
+  for (size_t k = 0; k < probes.size(); ++k) columns.push_back("probe.p" + std::to_string(k) + ".x");
+  {
+    SeriesWriter writer(path.string(), columns, false);
+    Sample sample;
+    sample.time = time;
+    sample.probe_values = probes;
+    ASSERT_TRUE(writer.write(sample));
+  }
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::getline(in, line);
+  std::vector<double> read;
+  std::stringstream cells(line);
+  for (std::string cell; std::getline(cells, cell, ',');) read.push_back(std::strtod(cell.c_str(), nullptr));
+  ASSERT_EQ(read.size(), 11 + probes.size());
+  EXPECT_EQ(std::memcmp(&read[0], &time, sizeof(double)), 0) << line;
+  for (size_t k = 0; k < probes.size(); ++k) {
+    const double back = read[11 + k];
+    EXPECT_EQ(std::memcmp(&back, &probes[k], sizeof(double)), 0) << "column " << columns[k] << ": " << line;
+  }
 }
 
 }  // namespace

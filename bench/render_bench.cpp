@@ -2,6 +2,8 @@
 //   BM_DrawParticles/N          draw N particles at 1280x720 (goal: 250k at >= 30 frames/s)
 //   BM_RenderAndEncodePng/N     draw, read back and PNG-encode N particles at 1280x720, serially
 //   BM_EncodePng/N              PNG-encode one rendered 1280x720 frame of N particles
+//   BM_EncodeSceneFrame/scene   PNG-encode a 1280x720 frame of a shipped scene (notched plate,
+//                               slider-crank) as `run --frames` draws it
 //   BM_Record/png|mp4|png_and_mp4
 //                               100k particles at 1280x720 through the Recorder (drawing and
 //                               encoding in threads of their own), end to end: PNG sequence, MP4
@@ -21,6 +23,8 @@
 #include "render/frame_writer.h"
 #include "render/image.h"
 #include "render/view.h"
+#include "scene/scene_loader.h"
+#include "solve/simulation.h"
 
 namespace periflex {
 namespace {
@@ -101,6 +105,28 @@ void BM_EncodePng(benchmark::State& state) {
   state.counters["png_kB"] = static_cast<double>(bytes) / 1e3;
 }
 BENCHMARK(BM_EncodePng)->Arg(100000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// A frame of a shipped scene a few steps in, drawn as `run --frames` draws it, PNG-encoded:
+// the pictures users write, not a synthetic plate.
+void BM_EncodeSceneFrame(benchmark::State& state, const char* scene_file) {
+  const SceneDef scene = load_scene(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/" + scene_file);
+  Simulation sim(scene);
+  sim.initialize();
+  for (int k = 0; k < 20; ++k) sim.step();
+  Snapshot snapshot;
+  sim.fill_snapshot(snapshot);
+  RgbaImage image;
+  {
+    OffscreenRenderer renderer(1280, 720, 4);
+    renderer.render(snapshot, fit_camera(snapshot, 1280, 720), RenderSettings(), image);
+  }
+  size_t bytes = 0;
+  for (auto _ : state) bytes = encode_png(image).size();
+  state.counters["png_kB"] = static_cast<double>(bytes) / 1e3;
+}
+BENCHMARK_CAPTURE(BM_EncodeSceneFrame, notched_plate, "notched_plate.toml")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_EncodeSceneFrame, slider_crank, "slider_crank.toml")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_EncodeSceneFrame, glass_branching, "glass_branching.toml")->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // Plates whose crack band sits somewhere else in each, so that consecutive frames differ (as they
 // do in a run; identical frames would flatter the movie encoder).

@@ -11,7 +11,7 @@ packages=(
 )
 if [[ "${1:-}" != "--compute-only" ]]; then
   packages+=(
-    libimgui-dev libglfw3-dev libgl-dev libegl-dev libopengl-dev
+    libimgui-dev libglfw3-dev libgl-dev libegl-dev libopengl-dev libdeflate-dev
     libegl-mesa0 libgl1-mesa-dri xvfb xauth ffmpeg xdotool
   )
 fi

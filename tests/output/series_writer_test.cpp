@@ -29,7 +29,7 @@ long write_calls() {
 
 TEST(SeriesWriter, EachRowOfHundredsOfProbesIsOneWriteCall) {
   if (write_calls() < 0) GTEST_SKIP() << "no /proc/self/io on this system";
-  const auto path = std::filesystem::current_path() / "series_writer_test.csv";
+  const std::filesystem::path path = ::testing::TempDir() + "series_writer_test.csv";
   // 300 probes of 3 columns: rows of about 10 kB, more than any stdio buffer
   std::vector<std::string> columns;
   for (int k = 0; k < 900; ++k) columns.push_back("probe.p" + std::to_string(k) + ".x");
@@ -62,7 +62,7 @@ TEST(SeriesWriter, EachRowOfHundredsOfProbesIsOneWriteCall) {
 // A value read back from series.csv is the double the solver had, bit for bit: comparisons with a
 // reference at 1e-13 must not be limited by the file (12 significant digits lose 1e-12 relative).
 TEST(SeriesWriter, ValuesReadBackAreTheSameDoubles) {
-  const auto path = std::filesystem::current_path() / "series_writer_round_trip.csv";
+  const std::filesystem::path path = ::testing::TempDir() + "series_writer_round_trip.csv";
   const std::vector<double> probes = {1.0 / 3.0,  0.1 + 0.2, -2.0 / 7.0 * 1e-9, 1e300 / 3.0,
                                       std::numeric_limits<double>::denorm_min(), 123456789.123456789, -0.0};
   const double time = 0.1 * 3;  // 0.30000000000000004

@@ -10,6 +10,7 @@
 
 #include "core/vec2.h"
 #include "scene/scene_def.h"
+#include "scene/shape_outline.h"
 
 namespace periflex {
 
@@ -65,8 +66,5 @@ class SolidMesh {
 // fewer than three points gives none. Degenerate input falls back to a fan.
 std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Vec2>& points);
 
-// Outline of a body-fixed shape placed at a pose (x, y, angle), as a closed polygon in world
-// coordinates: boxes as 4 corners, circles and bar caps as `segments`-gons.
-std::vector<Vec2> shape_outline(const ShapeDef& shape, const Vec2& position, double angle, int segments = 48);
 
 }  // namespace periflex

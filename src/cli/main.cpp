@@ -71,7 +71,7 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("--threads", run.threads, "Threads for the force evaluation (default: all cores)")
       ->check(CLI::Range(0, 1024));
   run_cmd->add_flag("--quiet", run.quiet, "No progress bar; only the final line");
-  run_cmd->add_option("--vtk-every", run.vtk_every, "Write particle snapshots (VTK) every N steps")
+  run_cmd->add_option("--vtk-every", run.vtk_every, "Write VTK snapshots (particles and rigid bodies, for ParaView) every N steps")
       ->check(CLI::NonNegativeNumber);
   add_render_options(run_cmd, run);
 

@@ -189,7 +189,10 @@ int run_command(const RunOptions& requested) {
       sim.fill_snapshot(snapshot);
       outputs.frames = make_frame_sink(options, out_dir, snapshot.geometry);
     }
-    if (options.vtk_every > 0 && has_particles) outputs.vtk = std::make_unique<VtkSeries>(out_dir + "/vtk");
+    if (options.vtk_every > 0) {
+      outputs.vtk = std::make_unique<VtkSeries>(out_dir + "/vtk");
+      snapshot.full_precision = true;  // the files keep every digit of the positions
+    }
 
     sim.initialize();
     emit_due_outputs();

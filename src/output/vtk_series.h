@@ -1,6 +1,7 @@
-// Particle snapshots for ParaView: one .vtu file per snapshot in a directory, and a .pvd
-// collection listing them with their times (rewritten atomically after each snapshot, so a
-// killed run leaves a collection that opens).
+// Snapshots for ParaView: one .vtu file of particles and one .vtp file of rigid-body shapes per
+// snapshot in a directory, and a .pvd collection (snapshots.pvd) listing them with their times as parts 0
+// (particles) and 1 (bodies), rewritten atomically after each snapshot, so a killed run leaves a
+// collection that opens.
 #pragma once
 
 #include <string>
@@ -15,12 +16,13 @@ class VtkSeries {
   explicit VtkSeries(std::string directory);
   void write(const Snapshot& snapshot);
   void finish() {}
-  long count() const { return static_cast<long>(entries_.size()); }
+  long count() const { return snapshots_; }
 
  private:
   std::string directory_;
-  struct Entry { double time; std::string file; };
+  struct Entry { double time; int part; std::string file; };
   std::vector<Entry> entries_;
+  long snapshots_ = 0;
 };
 
 }  // namespace periflex

@@ -1,7 +1,14 @@
-// VTK XML unstructured-grid files (.vtu, ASCII) of the particles of a snapshot, for ParaView.
-// Each particle is a VTK_VERTEX cell carrying point data: displacement (vector, from the
-// reference grid), speed, damage and strain (largest bond stretch). Files are written under a
-// temporary name and renamed, so a run killed part-way leaves only complete files.
+// VTK XML files of a snapshot, for ParaView and VTK readers:
+//   particles (.vtu, unstructured grid): one VTK_VERTEX cell per particle; Float64 positions and
+//     point data: displacement and velocity (3-vectors, z = 0), displacement_magnitude, speed,
+//     damage, strain (largest bond stretch), volume [m^3] and body (index of the flexible body);
+//   rigid bodies (.vtp, polydata): each shape of each body as a polygon at the body's pose, with
+//     cell data body (index, 0 = ground), virtual (1 for virtual bodies), position (the body's
+//     reference point, a 3-vector) and angle [rad].
+// Values are stored as raw little-endian binary in an appended block (UInt64 sizes), so files
+// are compact and keep every digit. Both carry the time as field data TIME. Files are written
+// under a temporary name and renamed, so a run killed part-way leaves only complete files.
+// docs/running.md lists the arrays.
 #pragma once
 
 #include <string>
@@ -10,10 +17,16 @@
 
 namespace periflex {
 
-// The .vtu document of the particles of `snapshot` (empty grid when it has none).
+// The .vtu document of the particles of `snapshot` (an empty grid when it has none). Positions
+// and velocities come from snapshot.particle_q / particle_qd when filled (full precision), else
+// from the float arrays.
 std::string vtu_document(const Snapshot& snapshot);
 
-// Writes vtu_document(snapshot) to `path` atomically. Throws std::runtime_error on failure.
+// The .vtp document of the rigid bodies' shapes (ground included) at their poses.
+std::string vtp_bodies_document(const Snapshot& snapshot);
+
+// Write the documents above to `path` atomically. Throw std::runtime_error on failure.
 void write_vtu(const std::string& path, const Snapshot& snapshot);
+void write_vtp_bodies(const std::string& path, const Snapshot& snapshot);
 
 }  // namespace periflex

@@ -617,6 +617,8 @@ void Simulation::fill_snapshot(Snapshot& out) const {
         g->reference_x.push_back(static_cast<float>(ref[2 * p]));
         g->reference_y.push_back(static_cast<float>(ref[2 * p + 1]));
       }
+      g->reference_xy.insert(g->reference_xy.end(), ref.begin(), ref.end());
+      g->particle_volume.insert(g->particle_volume.end(), flex->volumes().begin(), flex->volumes().end());
     }
     g->particle_attached.assign(first, 0);
     std::vector<int> coords;
@@ -666,6 +668,8 @@ void Simulation::fill_snapshot(Snapshot& out) const {
   out.vy.clear();
   out.strain.clear();
   out.bond_pairs.clear();
+  out.particle_q.clear();
+  out.particle_qd.clear();
   std::vector<float> buffer;
   std::vector<std::pair<int, int>> pairs;
   out.max_damage = 0.0;
@@ -681,6 +685,10 @@ void Simulation::fill_snapshot(Snapshot& out) const {
       out.speed.push_back(static_cast<float>(std::hypot(qd[off + 2 * p], qd[off + 2 * p + 1])));
       out.vx.push_back(static_cast<float>(qd[off + 2 * p]));
       out.vy.push_back(static_cast<float>(qd[off + 2 * p + 1]));
+    }
+    if (out.full_precision) {
+      out.particle_q.insert(out.particle_q.end(), q.data() + off, q.data() + off + 2 * flex->particle_count());
+      out.particle_qd.insert(out.particle_qd.end(), qd.data() + off, qd.data() + off + 2 * flex->particle_count());
     }
     flex->damage(buffer);
     for (float d : buffer) out.max_damage = std::max(out.max_damage, static_cast<double>(d));

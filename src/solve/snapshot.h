@@ -31,6 +31,10 @@ struct SceneGeometry {
   std::vector<FlexBody> flex_bodies;
   std::vector<uint8_t> particle_attached;  // 1 where a rigid-flexible joint holds the particle
   std::vector<float> reference_x, reference_y;
+  // the same in full precision (x0, y0, x1, y1, ...), and each particle's volume [m^3]: for the
+  // writers, whose displacements must not lose digits to float
+  std::vector<double> reference_xy;
+  std::vector<double> particle_volume;
   Vec2 bounds_min = Vec2::Zero(), bounds_max = Vec2::Zero();  // of the initial configuration
   bool has_particles() const { return !reference_x.empty(); }
 };
@@ -63,6 +67,10 @@ struct Snapshot {
   std::vector<float> vx, vy;       // velocity components
   std::vector<float> strain;       // largest bond stretch
   std::vector<std::pair<int, int>> bond_pairs;  // intact bonds, only for small bodies
+  // Positions and velocities in full precision (x0, y0, x1, y1, ...), filled only when the
+  // caller sets full_precision (the VTK writer); the drawing needs floats only.
+  bool full_precision = false;
+  std::vector<double> particle_q, particle_qd;
 
   struct Marker {
     enum class Kind { kRevolute, kTranslational, kRigid, kLink, kDriver, kAttachment };

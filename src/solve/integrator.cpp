@@ -2,6 +2,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "scene/scene_loader.h"
 #include "solve/integrator.h"
 #include "solve/integrator_hht.h"
 
@@ -13,7 +14,8 @@ std::unique_ptr<Integrator> make_velocity_verlet();
 std::unique_ptr<Integrator> make_runge_kutta4();
 std::unique_ptr<Integrator> make_dormand_prince(const SolverDef& solver);
 
-std::vector<std::string> integrator_names() { return {"symplectic_euler", "verlet", "rk4", "dopri54", "hht"}; }
+// the scene schema owns the list, so a name it accepts is one make_integrator builds
+std::vector<std::string> integrator_names() { return scene_integrator_names(); }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const SolverDef& solver) {
   if (name == "symplectic_euler") return make_symplectic_euler();

@@ -51,7 +51,7 @@ int theoretical_order(const std::string& integrator) {
   if (integrator == "verlet") return 2;
   if (integrator == "rk4") return 4;
   if (integrator == "dopri54") return 5;
-  if (integrator == "hht" || integrator == "generalized_alpha") return 2;
+  if (integrator == "hht") return 2;
   return 0;
 }
 

@@ -191,8 +191,25 @@ void Dynamics::analyse(double t) {
     selection_[c] = std::max(model_.mass[c], 1e-2 * (rotational ? inertia_ref : mass_ref));
   }
 
+  // the metric of the large systems' rank monitor: a body carries the particles it holds
+  // (a virtual body's mass is that of its particles), so its columns weigh what moves with it
+  Eigen::VectorXd carried = Eigen::VectorXd::Zero(n);
+  for (const auto& block : model_.constraints) {
+    const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
+    if (!joint || joint->body() < 0) continue;
+    const int b = joint->body();
+    for (int p = 0; p < joint->particle_count(); ++p) {
+      const double mp = model_.mass[joint->particle_coordinates()[p]];
+      carried[3 * b] += mp;
+      carried[3 * b + 1] += mp;
+      carried[3 * b + 2] += mp * joint->local_position(p).squaredNorm();
+    }
+  }
   selection_c_.resize(nc);
-  for (int k = 0; k < nc; ++k) selection_c_[k] = selection_[constrained_[k]];
+  for (int k = 0; k < nc; ++k) {
+    const int c = constrained_[k];
+    selection_c_[k] = std::max(selection_[c], model_.mass[c] + carried[c]);
+  }
 
   // attachments solved by elimination, and what stays in the matrix; a small rigid system is
   // solved dense with its rank found at every solve: every row stays active, and the rows
@@ -648,6 +665,11 @@ double Dynamics::project_positions(double t, Eigen::VectorXd& q, double toleranc
     // with rank monitoring, converged once the rows this solve kept are satisfied (a row left
     // out depends on them to first order; its residual still shows in position_violation)
     if (dense_) error = selected_violation();
+    if (!dense_ && !dropped_.empty()) {
+      error = 0.0;
+      for (int row : active_) error = std::max(error, std::abs(phi_all_[row]));
+      if (!std::isfinite(error)) error = std::numeric_limits<double>::infinity();
+    }
   }
   return error;
 }

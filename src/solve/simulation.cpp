@@ -261,6 +261,9 @@ void Simulation::Impl::advance(double t_end) {
       integrator->step(*dynamics, time, step, state);
       time = t_next;
       dynamics->impose_prescribed(time, state.q, state.qd);
+      // large systems: the rank of the bodies' small system after each step; the dependent
+      // rows are derived again when it changed (small systems find it at every solve)
+      if (dynamics->update_rank(time, state.q)) integrator->reset();
 
       // coordinate projection after the step
       const CorrectionDef& c = dynamics->correction();
@@ -295,10 +298,6 @@ void Simulation::Impl::advance(double t_end) {
         if (update.bonds_broken > 0) integrator->reset();
       }
       fracture_seconds += since(fracture_start);
-
-      // large systems: the rank of the bodies' small system after each step; the dependent
-      // rows are derived again when it changed (small systems find it at every solve)
-      if (dynamics->update_rank(time, state.q)) integrator->reset();
     }
     ++steps;
     check_divergence();

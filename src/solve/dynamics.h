@@ -65,6 +65,8 @@ class Dynamics final : public OdeSystem {
   // so all rows stay active and a row is left out only while it depends on the others.
   // Large systems find it at every step (update_rank).
   bool monitors_rank() const { return dense_ || !monitored_rows_.empty(); }
+  // Whether the system is solved dense (small rigid systems).
+  bool dense() const { return dense_; }
   // Rows left out of the last acceleration solve as dependent (rank monitoring), the
   // smallest scaled pivot of that solve, and how often the set of left-out rows changed.
   const std::vector<int>& dependent_now() const { return dense_ ? dense_acceleration_.dependent() : dropped_; }

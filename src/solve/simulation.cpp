@@ -182,9 +182,10 @@ void Simulation::Impl::build_info() {
     std::string names;
     for (const auto& n : info.redundant_constraints) names += (names.empty() ? "" : ", ") + n;
     w.push_back(std::to_string(info.redundant_equations) + " redundant constraint equation(s) at t = 0 in: " + names +
-                (dynamics->monitors_rank() ? " (left out only while they stay dependent: the rank is found again at "
-                                             "every solve)"
-                                           : " (dropped for the run)"));
+                (dynamics->monitors_rank() ? std::string(" (left out only while they stay dependent: the rank is found "
+                                                         "again at every ") +
+                                                 (dynamics->dense() ? "solve)" : "step)")
+                                           : std::string(" (dropped for the run)")));
   }
 }
 

@@ -336,11 +336,11 @@ void Dynamics::choose_monitored_rows(double t, const Eigen::VectorXd& q) {
 
 bool Dynamics::update_rank(double t, const Eigen::VectorXd& q) {
   if (dense_ || monitored_rows_.empty()) return false;
-  const int rows = model_.constraint_rows, nc = static_cast<int>(constrained_.size());
   // the watched rows' Jacobian (blocks with a watched row), rows numbered compactly
-  std::vector<int>& index = active_index_work_;
-  index.assign(rows, -1);
-  for (size_t k = 0; k < monitored_rows_.size(); ++k) index[monitored_rows_[k]] = static_cast<int>(k);
+  auto index = [&](int row) {
+    const auto it = std::lower_bound(monitored_rows_.begin(), monitored_rows_.end(), row);
+    return it != monitored_rows_.end() && *it == row ? static_cast<int>(it - monitored_rows_.begin()) : -1;
+  };
   all_.clear();
   for (const auto& block : model_.constraints) {
     const int first = block.first_row, count = block.constraint->rows();
@@ -348,16 +348,33 @@ bool Dynamics::update_rank(double t, const Eigen::VectorXd& q) {
     if (it == monitored_rows_.end() || *it >= first + count) continue;
     block.constraint->jacobian(q, t, first, all_);
   }
+  // over the columns the watched rows touch only (a few), so the cost does not grow with the
+  // particles the bodies hold
   Triplets entries;
+  std::vector<int> columns;
   for (const auto& e : all_) {
-    if (index[e.row()] >= 0 && local_[e.col()] >= 0) entries.emplace_back(index[e.row()], local_[e.col()], e.value());
+    const int row = index(e.row());
+    if (row < 0 || local_[e.col()] < 0) continue;
+    columns.push_back(local_[e.col()]);
+    entries.emplace_back(row, local_[e.col()], e.value());
   }
-  Eigen::SparseMatrix<double> j(static_cast<int>(monitored_rows_.size()), nc);
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  const int used = static_cast<int>(columns.size());
+  RowAnalysisOptions options;
+  options.eliminable.resize(used);
+  monitor_weight_.resize(used);
+  for (int k = 0; k < used; ++k) {
+    options.eliminable[k] = particle_column_[columns[k]];
+    monitor_weight_[k] = selection_c_[columns[k]];
+  }
+  for (auto& e : entries) {
+    e = Eigen::Triplet<double>(e.row(), static_cast<int>(std::lower_bound(columns.begin(), columns.end(), e.col()) - columns.begin()), e.value());
+  }
+  Eigen::SparseMatrix<double> j(static_cast<int>(monitored_rows_.size()), used);
   j.setFromTriplets(entries.begin(), entries.end());
   // rank in the mass metric with the threshold of the small systems' solves
-  RowAnalysisOptions options;
-  options.eliminable = particle_column_;
-  options.column_weight = &selection_c_;
+  options.column_weight = &monitor_weight_;
   options.relative_threshold = kRankThreshold;
   const RowDependence found = find_dependent_rows(j, options);
   const size_t watched_dropped = dropped_.size() - structural_dropped_.size();

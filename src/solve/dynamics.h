@@ -181,7 +181,7 @@ class Dynamics final : public OdeSystem {
   // each local column is a particle coordinate (eliminated first in the rank analysis)
   std::vector<int> monitored_rows_, structural_dropped_;
   std::vector<char> particle_column_;
-  Eigen::VectorXd selection_c_;
+  Eigen::VectorXd selection_c_, monitor_weight_;
   std::vector<int> active_;       // global rows kept, in order
   std::vector<int> active_index_; // global row -> active index (-1 dropped)
   std::vector<char> active_is_driver_;  // per active row

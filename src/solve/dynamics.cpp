@@ -534,13 +534,20 @@ bool Dynamics::solve_constrained(const Eigen::VectorXd& w, const double* a, cons
   return true;
 }
 
+std::vector<int> Dynamics::dependent_active_rows(const Eigen::SparseMatrix<double>& j, double relative_threshold) const {
+  RowAnalysisOptions options;
+  options.eliminable = particle_column_;
+  options.relative_threshold = relative_threshold;
+  return find_dependent_rows(j, options).dependent;
+}
+
 void Dynamics::throw_singular(double t, const Eigen::VectorXd& q, const std::string& during) {
   // find the blocks whose rows became dependent, to name them
   assemble_jacobian(t, q);
   Eigen::SparseMatrix<double> j(active_rows(), constrained_coordinates());
   j.setFromTriplets(local_j_.begin(), local_j_.end());
   std::string names;
-  for (int a : dependent_rows(j, 1e-8)) {
+  for (int a : dependent_active_rows(j, 1e-8)) {
     const std::string& name = block_of_row(active_[a]);
     if (names.find("'" + name + "'") == std::string::npos) names += (names.empty() ? "'" : ", '") + name + "'";
   }
@@ -814,7 +821,7 @@ std::vector<std::string> Dynamics::nearly_dependent_blocks(double t, const Eigen
   assemble_jacobian(t, q);
   Eigen::SparseMatrix<double> j(active_rows(), constrained_coordinates());
   j.setFromTriplets(local_j_.begin(), local_j_.end());
-  for (int a : dependent_rows(j, relative_threshold)) {
+  for (int a : dependent_active_rows(j, relative_threshold)) {
     const std::string& name = block_of_row(active_[a]);
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -162,6 +163,9 @@ class Dynamics final : public OdeSystem {
   void select_rows(const std::vector<int>& dropped);
   // The rows the large-system rank monitor watches, from the attachment structure at (t, q).
   void choose_monitored_rows(double t, const Eigen::VectorXd& q);
+  // Dependent rows of a Jacobian over the constrained coordinates, particle columns eliminated
+  // first (see redundancy.h).
+  std::vector<int> dependent_active_rows(const Eigen::SparseMatrix<double>& j, double relative_threshold) const;
   // Refuses a dependency with contradicting right-hand sides that involves an attachment.
   void refuse_conflict(const std::vector<int>& rows) const;
   const std::string& block_of_row(int row) const;

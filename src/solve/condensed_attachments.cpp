@@ -10,11 +10,26 @@ void CondensedAttachments::build(const SystemModel& model, const std::vector<int
   particles_.clear();
   block_condensed_.assign(model.constraints.size(), 0);
   slaved_.assign(model.coordinate_count, 0);
+  row_condensed_.assign(model.constraint_rows, 0);
   if (!enabled) return;
 
-  // how many blocks reach each coordinate
+  // how many blocks reach each coordinate through rows that stay (a particle whose rows in a
+  // joint were all left out as dependent is not reached by that joint)
   std::vector<int> blocks_on(model.coordinate_count, 0), coords;
   for (const auto& block : model.constraints) {
+    if (const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get())) {
+      const int body = joint->body();
+      for (int p = 0; p < joint->particle_count(); ++p) {
+        const int row = block.first_row + 2 * p;
+        if (active_index[row] < 0 && active_index[row + 1] < 0) continue;
+        const int c = joint->particle_coordinates()[p];
+        ++blocks_on[c];
+        ++blocks_on[c + 1];
+      }
+      if (body >= 0)
+        for (int axis = 0; axis < 3; ++axis) ++blocks_on[3 * body + axis];
+      continue;
+    }
     coords.clear();
     block.constraint->coordinates(coords);
     std::vector<int> seen;
@@ -27,26 +42,28 @@ void CondensedAttachments::build(const SystemModel& model, const std::vector<int
     }
   }
 
+  // particle by particle: one whose rows stay and that no other staying row reaches
   for (size_t k = 0; k < model.constraints.size(); ++k) {
     const ConstraintBlock& block = model.constraints[k];
     if (block.origin != ConstraintBlock::Origin::kAttachment) continue;
     const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
     if (!joint) continue;
-    bool eligible = true;
-    for (int r = 0; r < joint->rows() && eligible; ++r) eligible = active_index[block.first_row + r] >= 0;
-    for (int c : joint->particle_coordinates()) {
+    int condensed = 0;
+    for (int p = 0; p < joint->particle_count(); ++p) {
+      const int c = joint->particle_coordinates()[p];
+      const int row = block.first_row + 2 * p;
+      bool eligible = active_index[row] >= 0 && active_index[row + 1] >= 0;
       for (int axis = 0; axis < 2 && eligible; ++axis) {
         eligible = blocks_on[c + axis] == 1 && !model.is_prescribed[c + axis];
       }
-    }
-    if (!eligible) continue;
-    block_condensed_[k] = 1;
-    for (int p = 0; p < joint->particle_count(); ++p) {
-      const int c = joint->particle_coordinates()[p];
+      if (!eligible) continue;
       const Vec2 s = joint->local_position(p);
-      particles_.push_back({c, joint->body(), block.first_row + 2 * p, s.x(), s.y()});
+      particles_.push_back({c, joint->body(), row, s.x(), s.y()});
       slaved_[c] = slaved_[c + 1] = 1;
+      row_condensed_[row] = row_condensed_[row + 1] = 1;
+      ++condensed;
     }
+    block_condensed_[k] = condensed == joint->particle_count();
   }
 }
 

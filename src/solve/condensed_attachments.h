@@ -14,8 +14,10 @@
 // serves the accelerations (a = g, e = gamma with its Baumgarte terms), the position projection
 // (a = 0, e = -Phi) and the velocity projection (a = 0, e = -(Phi_q qd + Phi_t)).
 //
-// A joint is eliminated only when its particles take part in no other constraint, are not
-// imposed, and none of its rows was dropped as dependent; otherwise it stays in the matrix.
+// A particle is eliminated when both its rows in the joint stay (are not left out as
+// dependent), no other staying row reaches it, and it is not imposed; otherwise its rows stay
+// in the matrix. (A plate held whole by two grips keeps in the matrix only the few particles
+// whose rows in the second grip's joint tie the two grips together.)
 #pragma once
 
 #include <Eigen/Core>
@@ -32,8 +34,9 @@ class CondensedAttachments {
   // row (-1 dropped).
   void build(const SystemModel& model, const std::vector<int>& active_index, bool enabled = true);
   bool empty() const { return particles_.empty(); }
-  // Whether constraint block k of the model is eliminated.
+  // Whether constraint block k of the model is eliminated whole, and whether global row r is.
   bool block_condensed(size_t k) const { return k < block_condensed_.size() && block_condensed_[k]; }
+  bool row_condensed(int r) const { return r < static_cast<int>(row_condensed_.size()) && row_condensed_[r]; }
   // Whether global coordinate c is an eliminated particle coordinate.
   bool coordinate_condensed(int c) const { return c < static_cast<int>(slaved_.size()) && slaved_[c]; }
 
@@ -65,7 +68,7 @@ class CondensedAttachments {
     double world_x = 0, world_y = 0;  // A(phi) s'_p at the last update
   };
   std::vector<Particle> particles_;
-  std::vector<char> block_condensed_, slaved_;
+  std::vector<char> block_condensed_, row_condensed_, slaved_;
 };
 
 }  // namespace periflex

@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "coupling/rigid_flexible_joint.h"
 #include "solve/redundancy.h"
 
 namespace periflex {
@@ -80,26 +81,44 @@ void Dynamics::analyse(double t) {
                                 " and no constraint acts on it; give it " + which + " or attach it");
   }
 
-  // dependent rows at t0 are dropped for the whole run
+  // dependent rows at t0: the particle coordinates are eliminated first (rows of the
+  // rigid-flexible joints), so the rank-revealing QR sees only the small system of the bodies
   const int rows = model_.constraint_rows;
+  const int nc0 = static_cast<int>(constrained_.size());
+  particle_column_.assign(nc0, 0);
+  for (int k = 0; k < nc0; ++k) particle_column_[k] = constrained_[k] >= model_.rigid_coordinates;
   active_index_.assign(rows, -1);
   for (int r = 0; r < rows; ++r) active_index_[r] = r;
   active_.resize(rows);
   for (int r = 0; r < rows; ++r) active_[r] = r;
   dropped_.clear();
+  std::vector<int> dropped;
   if (rows > 0) {
     assemble_jacobian(t, q);
-    Eigen::SparseMatrix<double> j(rows, static_cast<int>(constrained_.size()));
+    Eigen::SparseMatrix<double> j(rows, nc0);
     j.setFromTriplets(local_j_.begin(), local_j_.end());
-    dropped_ = dependent_rows(j);
-    active_.clear();
-    for (int r = 0, a = 0; r < rows; ++r) {
-      if (std::binary_search(dropped_.begin(), dropped_.end(), r)) {
-        active_index_[r] = -1;
-      } else {
-        active_index_[r] = a++;
-        active_.push_back(r);
-      }
+    // what the drivers and imposed motions ask of the velocities, Phi_t + Phi_q(imposed) qd:
+    // a dependency must ask the same of its rows, or the motion cannot start
+    time_derivative_all(t, q);
+    Eigen::VectorXd rates = phi_t_all_;
+    Eigen::VectorXd q_imposed = q, qd_imposed = model_.qd0;
+    impose_prescribed(t, q_imposed, qd_imposed);
+    for (const auto& e : prescribed_j_) rates[e.row()] += e.value() * qd_imposed[e.col()];
+    RowAnalysisOptions options;
+    options.eliminable = particle_column_;
+    options.rhs = &rates;
+    const RowDependence found = find_dependent_rows(j, options);
+    if (!found.conflicting.empty()) refuse_conflict(found.conflicting);
+    dropped = found.dependent;
+  }
+  initial_dropped_ = dropped.size();
+  dropped_ = dropped;
+  for (int r : dropped) active_index_[r] = -1;
+  active_.clear();
+  for (int r = 0, a = 0; r < rows; ++r) {
+    if (active_index_[r] >= 0) {
+      active_index_[r] = a++;
+      active_.push_back(r);
     }
   }
 
@@ -183,11 +202,57 @@ void Dynamics::analyse(double t) {
     selection_[c] = std::max(model_.mass[c], 1e-2 * (rotational ? inertia_ref : mass_ref));
   }
 
-  // attachments solved by elimination, and what stays in the matrix
-  condensed_.build(model_, active_index_, condense_);
-  // a small rigid system is solved dense with its rank found at every solve: every row stays
-  // active, and the rows dependent at t0 are only left out while they stay dependent
+  // the metric of the large systems' rank monitor: a body carries the particles it holds
+  // (a virtual body's mass is that of its particles), so its columns weigh what moves with it
+  Eigen::VectorXd carried = Eigen::VectorXd::Zero(n);
+  for (const auto& block : model_.constraints) {
+    const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
+    if (!joint || joint->body() < 0) continue;
+    const int b = joint->body();
+    for (int p = 0; p < joint->particle_count(); ++p) {
+      const double mp = model_.mass[joint->particle_coordinates()[p]];
+      carried[3 * b] += mp;
+      carried[3 * b + 1] += mp;
+      carried[3 * b + 2] += mp * joint->local_position(p).squaredNorm();
+    }
+  }
+  selection_c_.resize(nc);
+  for (int k = 0; k < nc; ++k) {
+    const int c = constrained_[k];
+    selection_c_[k] = std::max(selection_[c], model_.mass[c] + carried[c]);
+  }
+
+  // attachments solved by elimination, and what stays in the matrix; a small rigid system is
+  // solved dense with its rank found at every solve: every row stays active, and the rows
+  // dependent at t0 are only left out while they stay dependent
+  dense_ = false;
+  select_rows(dropped);
   dense_ = condensed_.empty() && rows > 0 && rows <= kDenseRows && nc <= kDenseCoordinates;
+  if (dense_) {
+    select_rows(dropped);
+    dense_acceleration_.resize(static_cast<int>(reduced_cols_.size()), static_cast<int>(reduced_rows_.size()));
+    dense_projection_.resize(static_cast<int>(reduced_cols_.size()), static_cast<int>(reduced_rows_.size()));
+    dense_acceleration_.set_late_rows(dropped_);
+    dense_projection_.set_late_rows(dropped_);
+    last_dependent_ = dropped_;
+  }
+  rank_changes_ = 0;
+  choose_monitored_rows(t, q);
+}
+
+void Dynamics::select_rows(const std::vector<int>& dropped) {
+  const int n = model_.coordinate_count, rows = model_.constraint_rows;
+  dropped_ = dropped;
+  active_index_.assign(rows, 0);
+  for (int r : dropped_) active_index_[r] = -1;
+  active_.clear();
+  for (int r = 0, a = 0; r < rows; ++r) {
+    if (active_index_[r] >= 0) {
+      active_index_[r] = a++;
+      active_.push_back(r);
+    }
+  }
+  condensed_.build(model_, active_index_, condense_ && !dense_);
   if (dense_) {
     active_.resize(rows);
     for (int r = 0; r < rows; ++r) active_[r] = active_index_[r] = r;
@@ -205,18 +270,10 @@ void Dynamics::analyse(double t) {
     const ConstraintBlock& block = model_.constraints[k];
     for (int r = 0; r < block.constraint->rows(); ++r) {
       const int a = active_index_[block.first_row + r];
-      if (a >= 0) reduced_rows_.push_back(a);
+      if (a >= 0 && !condensed_.row_condensed(block.first_row + r)) reduced_rows_.push_back(a);
     }
   }
   std::sort(reduced_rows_.begin(), reduced_rows_.end());
-  if (dense_) {
-    dense_acceleration_.resize(static_cast<int>(reduced_cols_.size()), static_cast<int>(reduced_rows_.size()));
-    dense_projection_.resize(static_cast<int>(reduced_cols_.size()), static_cast<int>(reduced_rows_.size()));
-    dense_acceleration_.set_late_rows(dropped_);
-    dense_projection_.set_late_rows(dropped_);
-    last_dependent_ = dropped_;
-    rank_changes_ = 0;
-  }
 
   lambda_ = Eigen::VectorXd::Zero(active_rows());
   active_is_driver_.assign(active_rows(), 0);
@@ -227,6 +284,149 @@ void Dynamics::analyse(double t) {
       if (a >= 0) active_is_driver_[a] = 1;
     }
   }
+}
+
+void Dynamics::choose_monitored_rows(double t, const Eigen::VectorXd& q) {
+  monitored_rows_.clear();
+  structural_dropped_.clear();
+  if (dense_ || model_.constraint_rows == 0) return;
+  // the attachment rows alone: with the particle columns eliminated, the rows left tie bodies
+  // together through shared particles (or to imposed particles); the dependent ones among
+  // them depend on the others at every position (rigid bodies sharing points stay so), the
+  // independent ones are watched with the joints and drivers
+  const int rows = model_.constraint_rows, nc = static_cast<int>(constrained_.size());
+  std::vector<char> is_attachment(rows, 0);
+  std::vector<int> particle_of_row(rows, -1);
+  Triplets entries;
+  for (const auto& block : model_.constraints) {
+    if (block.origin != ConstraintBlock::Origin::kAttachment) continue;
+    all_.clear();
+    block.constraint->jacobian(q, t, block.first_row, all_);
+    for (const auto& e : all_) {
+      if (local_[e.col()] >= 0) entries.emplace_back(e.row(), local_[e.col()], e.value());
+    }
+    const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
+    for (int r = 0; r < block.constraint->rows(); ++r) {
+      is_attachment[block.first_row + r] = 1;
+      if (joint) particle_of_row[block.first_row + r] = joint->particle_coordinates()[r / 2];
+    }
+  }
+  std::vector<char> watched(rows, 0);
+  for (const auto& block : model_.constraints) {
+    if (block.origin == ConstraintBlock::Origin::kAttachment) continue;
+    for (int r = 0; r < block.constraint->rows(); ++r) watched[block.first_row + r] = 1;
+  }
+  if (!entries.empty()) {
+    Eigen::SparseMatrix<double> j(rows, nc);
+    j.setFromTriplets(entries.begin(), entries.end());
+    RowAnalysisOptions options;
+    options.eliminable = particle_column_;
+    const RowDependence found = find_dependent_rows(j, options);
+    std::vector<char> dependent(rows, 0), pivot(rows, 0);
+    for (int r : found.dependent) dependent[r] = is_attachment[r];
+    for (int r : found.pivots) pivot[r] = 1;
+    for (int r = 0; r < rows; ++r) {
+      if (dependent[r]) structural_dropped_.push_back(r);
+    }
+    // the independent rows that are not pivots, and the other rows on their particles
+    std::vector<char> particle_watched(model_.coordinate_count, 0);
+    for (int r = 0; r < rows; ++r) {
+      if (!is_attachment[r] || dependent[r] || pivot[r]) continue;
+      watched[r] = 1;
+      if (particle_of_row[r] >= 0) particle_watched[particle_of_row[r]] = 1;
+    }
+    for (int r = 0; r < rows; ++r) {
+      if (is_attachment[r] && !dependent[r] && particle_of_row[r] >= 0 && particle_watched[particle_of_row[r]])
+        watched[r] = 1;
+    }
+  }
+  for (int r = 0; r < rows; ++r) {
+    if (watched[r]) monitored_rows_.push_back(r);
+  }
+}
+
+bool Dynamics::update_rank(double t, const Eigen::VectorXd& q) {
+  if (dense_ || monitored_rows_.empty()) return false;
+  // the watched rows' Jacobian (blocks with a watched row), rows numbered compactly
+  auto index = [&](int row) {
+    const auto it = std::lower_bound(monitored_rows_.begin(), monitored_rows_.end(), row);
+    return it != monitored_rows_.end() && *it == row ? static_cast<int>(it - monitored_rows_.begin()) : -1;
+  };
+  all_.clear();
+  for (const auto& block : model_.constraints) {
+    const int first = block.first_row, count = block.constraint->rows();
+    const auto it = std::lower_bound(monitored_rows_.begin(), monitored_rows_.end(), first);
+    if (it == monitored_rows_.end() || *it >= first + count) continue;
+    block.constraint->jacobian(q, t, first, all_);
+  }
+  // over the columns the watched rows touch only (a few), so the cost does not grow with the
+  // particles the bodies hold
+  Triplets entries;
+  std::vector<int> columns;
+  for (const auto& e : all_) {
+    const int row = index(e.row());
+    if (row < 0 || local_[e.col()] < 0) continue;
+    columns.push_back(local_[e.col()]);
+    entries.emplace_back(row, local_[e.col()], e.value());
+  }
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  const int used = static_cast<int>(columns.size());
+  RowAnalysisOptions options;
+  options.eliminable.resize(used);
+  monitor_weight_.resize(used);
+  for (int k = 0; k < used; ++k) {
+    options.eliminable[k] = particle_column_[columns[k]];
+    monitor_weight_[k] = selection_c_[columns[k]];
+  }
+  for (auto& e : entries) {
+    e = Eigen::Triplet<double>(e.row(), static_cast<int>(std::lower_bound(columns.begin(), columns.end(), e.col()) - columns.begin()), e.value());
+  }
+  Eigen::SparseMatrix<double> j(static_cast<int>(monitored_rows_.size()), used);
+  j.setFromTriplets(entries.begin(), entries.end());
+  // rank in the mass metric with the threshold of the small systems' solves
+  options.column_weight = &monitor_weight_;
+  options.relative_threshold = kRankThreshold;
+  const RowDependence found = find_dependent_rows(j, options);
+  const size_t watched_dropped = dropped_.size() - structural_dropped_.size();
+  if (found.dependent.size() == watched_dropped) return false;
+  // the rank changed: the rows dependent now, with the ones that always are
+  std::vector<int> dropped = structural_dropped_;
+  for (int k : found.dependent) dropped.push_back(monitored_rows_[k]);
+  std::sort(dropped.begin(), dropped.end());
+  select_rows(dropped);
+  ++rank_changes_;
+  return true;
+}
+
+void Dynamics::refuse_conflict(const std::vector<int>& rows) const {
+  // the blocks of the rows, in order; refused only when an attachment takes part (a rigid
+  // mechanism's dependency is a singular position, handled as the run goes)
+  std::vector<size_t> blocks;
+  for (int row : rows) {
+    size_t k = 0;
+    for (size_t b = 0; b < model_.constraints.size(); ++b) {
+      if (model_.constraints[b].first_row <= row) k = b;
+    }
+    if (blocks.empty() || blocks.back() != k) {
+      if (std::find(blocks.begin(), blocks.end(), k) == blocks.end()) blocks.push_back(k);
+    }
+  }
+  std::sort(blocks.begin(), blocks.end());
+  const ConstraintBlock* attachment = nullptr;
+  std::string names;
+  for (size_t k : blocks) {
+    const ConstraintBlock& block = model_.constraints[k];
+    if (block.origin == ConstraintBlock::Origin::kAttachment) attachment = &block;
+    names += (names.empty() ? "'" : ", '") + block.constraint->name() + "'";
+  }
+  if (!attachment) return;
+  throw InputError(attachment->where,
+                   "the constraints " + names +
+                       " contradict each other: attachments that hold particles in common tie their bodies "
+                       "together, so these equations depend on each other, and the drivers or imposed motions "
+                       "among them ask for different motions; hold each particle by one body, or drive the "
+                       "bodies alike");
 }
 
 void Dynamics::assemble_jacobian(double t, const Eigen::VectorXd& q) {
@@ -275,6 +475,7 @@ void Dynamics::assemble_reduced(double t, const Eigen::VectorXd& q) {
     const int active = active_index_[e.row()];
     if (active < 0) continue;
     const int row = row_of[active];
+    if (row < 0) continue;  // an eliminated particle's row of a joint kept in part
     const int col = reduced_col_[e.col()];
     if (col >= 0) {
       reduced_j_.emplace_back(row, col, e.value());
@@ -344,13 +545,20 @@ bool Dynamics::solve_constrained(const Eigen::VectorXd& w, const double* a, cons
   return true;
 }
 
+std::vector<int> Dynamics::dependent_active_rows(const Eigen::SparseMatrix<double>& j, double relative_threshold) const {
+  RowAnalysisOptions options;
+  options.eliminable = particle_column_;
+  options.relative_threshold = relative_threshold;
+  return find_dependent_rows(j, options).dependent;
+}
+
 void Dynamics::throw_singular(double t, const Eigen::VectorXd& q, const std::string& during) {
   // find the blocks whose rows became dependent, to name them
   assemble_jacobian(t, q);
   Eigen::SparseMatrix<double> j(active_rows(), constrained_coordinates());
   j.setFromTriplets(local_j_.begin(), local_j_.end());
   std::string names;
-  for (int a : dependent_rows(j, 1e-8)) {
+  for (int a : dependent_active_rows(j, 1e-8)) {
     const std::string& name = block_of_row(active_[a]);
     if (names.find("'" + name + "'") == std::string::npos) names += (names.empty() ? "'" : ", '") + name + "'";
   }
@@ -492,6 +700,11 @@ double Dynamics::project_positions(double t, Eigen::VectorXd& q, double toleranc
     // with rank monitoring, converged once the rows this solve kept are satisfied (a row left
     // out depends on them to first order; its residual still shows in position_violation)
     if (dense_) error = selected_violation();
+    if (!dense_ && !dropped_.empty()) {
+      error = 0.0;
+      for (int row : active_) error = std::max(error, std::abs(phi_all_[row]));
+      if (!std::isfinite(error)) error = std::numeric_limits<double>::infinity();
+    }
   }
   return error;
 }
@@ -595,7 +808,21 @@ double Dynamics::velocity_violation(double t, const Eigen::VectorXd& q, const Ei
   velocity_residual_all(qd);
   double worst = 0.0;
   for (int row : active_) worst = std::max(worst, std::abs(nu_all_[row]));
-  return worst;
+  // the rows left out as dependent: Phi_q qd + Phi_t from their blocks' Jacobians
+  if (!dense_ && !dropped_.empty()) {
+    all_.clear();
+    for (const auto& block : model_.constraints) {
+      const int first = block.first_row, count = block.constraint->rows();
+      const auto it = std::lower_bound(dropped_.begin(), dropped_.end(), first);
+      if (it == dropped_.end() || *it >= first + count) continue;
+      block.constraint->jacobian(q, t, first, all_);
+    }
+    Eigen::VectorXd& left_out = dz_;
+    left_out = phi_t_all_;
+    for (const auto& e : all_) left_out[e.row()] += e.value() * qd[e.col()];
+    for (int row : dropped_) worst = std::max(worst, std::abs(left_out[row]));
+  }
+  return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
 }
 
 std::vector<std::string> Dynamics::nearly_dependent_blocks(double t, const Eigen::VectorXd& q,
@@ -605,7 +832,7 @@ std::vector<std::string> Dynamics::nearly_dependent_blocks(double t, const Eigen
   assemble_jacobian(t, q);
   Eigen::SparseMatrix<double> j(active_rows(), constrained_coordinates());
   j.setFromTriplets(local_j_.begin(), local_j_.end());
-  for (int a : dependent_rows(j, relative_threshold)) {
+  for (int a : dependent_active_rows(j, relative_threshold)) {
     const std::string& name = block_of_row(active_[a]);
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <algorithm>
 #include <optional>
 #include <string>
@@ -46,22 +47,32 @@ class Dynamics final : public OdeSystem {
  public:
   explicit Dynamics(SystemModel& model);
 
-  // At (t, q0): finds dependent constraint rows (dropped from then on) and checks that every
-  // coordinate's motion is determined. Throws InputError naming an undetermined body.
+  // At (t, q0): finds dependent constraint rows (left out of the solves) and checks that every
+  // coordinate's motion is determined. Throws InputError naming an undetermined body, or the
+  // constraints of a dependency that involves an attachment and whose drivers or imposed
+  // motions contradict each other (they cannot all hold once the motion starts).
   void analyse(double t);
+  // Large systems: the rank of the small system of the rigid and virtual bodies at (t, q)
+  // (joints, drivers, and the attachment rows that tie bodies together through shared or
+  // imposed particles); when it differs from the rows left out now, the dependent rows are
+  // derived again at q. Returns true when they changed. Small systems do this at every solve.
+  bool update_rank(double t, const Eigen::VectorXd& q);
   // Global rows dropped as dependent, and the names of the blocks they came from.
   const std::vector<int>& dropped_rows() const { return dropped_; }
   std::vector<std::string> dropped_blocks() const;
   int active_rows() const { return static_cast<int>(active_.size()); }
   // Equations independent at t0 (all rows less the dependent ones).
-  int independent_rows() const { return model_.constraint_rows - static_cast<int>(dropped_.size()); }
+  int independent_rows() const { return model_.constraint_rows - static_cast<int>(initial_dropped_); }
   // Small rigid systems (no eliminated attachments, at most kDenseRows equations): every
   // solve is dense and finds the rank of the Jacobian again (see dense_constraint_solver.h),
   // so all rows stay active and a row is left out only while it depends on the others.
-  bool monitors_rank() const { return dense_; }
+  // Large systems find it at every step (update_rank).
+  bool monitors_rank() const { return dense_ || !monitored_rows_.empty(); }
+  // Whether the system is solved dense (small rigid systems).
+  bool dense() const { return dense_; }
   // Rows left out of the last acceleration solve as dependent (rank monitoring), the
   // smallest scaled pivot of that solve, and how often the set of left-out rows changed.
-  const std::vector<int>& dependent_now() const { return dense_acceleration_.dependent(); }
+  const std::vector<int>& dependent_now() const { return dense_ ? dense_acceleration_.dependent() : dropped_; }
   double smallest_pivot() const { return dense_ ? dense_acceleration_.smallest_pivot() : 1.0; }
   long rank_changes() const { return rank_changes_; }
   // Names of the blocks of the given global rows.
@@ -107,8 +118,7 @@ class Dynamics final : public OdeSystem {
   // Mass-weighted least change of qd with Phi_q qd + Phi_t = 0; returns max |change|.
   double project_velocities(double t, const Eigen::VectorXd& q, Eigen::VectorXd& qd);
 
-  // max |Phi| over every row (dependent ones included) and max |Phi_q qd + Phi_t| over the
-  // active rows (every row with rank monitoring).
+  // max |Phi| and max |Phi_q qd + Phi_t| over every row, the dependent ones included.
   double position_violation(double t, const Eigen::VectorXd& q);
   double velocity_violation(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd);
   // Blocks whose active rows are (nearly) dependent at (t, q): a rank-revealing QR of the
@@ -150,6 +160,16 @@ class Dynamics final : public OdeSystem {
   // max |Phi| over the rows the last projection solve kept (after residual_all).
   double selected_violation() const;
   [[noreturn]] void throw_singular(double t, const Eigen::VectorXd& q, const std::string& during);
+  // Leaves out the given global rows (increasing) and rebuilds what depends on the active set:
+  // the eliminated attachments, the reduced rows and columns, the multipliers.
+  void select_rows(const std::vector<int>& dropped);
+  // The rows the large-system rank monitor watches, from the attachment structure at (t, q).
+  void choose_monitored_rows(double t, const Eigen::VectorXd& q);
+  // Dependent rows of a Jacobian over the constrained coordinates, particle columns eliminated
+  // first (see redundancy.h).
+  std::vector<int> dependent_active_rows(const Eigen::SparseMatrix<double>& j, double relative_threshold) const;
+  // Refuses a dependency with contradicting right-hand sides that involves an attachment.
+  void refuse_conflict(const std::vector<int>& rows) const;
   const std::string& block_of_row(int row) const;
 
   SystemModel& model_;
@@ -161,6 +181,13 @@ class Dynamics final : public OdeSystem {
   std::vector<int> local_;        // global -> local (-1 when not constrained)
   std::vector<int> free_;         // unconstrained, not prescribed
   std::vector<int> dropped_;      // global rows
+  size_t initial_dropped_ = 0;    // dependent rows at t0
+  // large systems: rows the rank monitor watches (increasing), the attachment rows that
+  // always depend on them (shared particles of bodies already tied together), and whether
+  // each local column is a particle coordinate (eliminated first in the rank analysis)
+  std::vector<int> monitored_rows_, structural_dropped_;
+  std::vector<char> particle_column_;
+  Eigen::VectorXd selection_c_, monitor_weight_;
   std::vector<int> active_;       // global rows kept, in order
   std::vector<int> active_index_; // global row -> active index (-1 dropped)
   std::vector<char> active_is_driver_;  // per active row

@@ -68,6 +68,7 @@ void build_flexible_part(const SceneDef& scene, SystemModel& m) {
     ConstraintBlock block;
     block.first_row = m.constraint_rows;
     block.origin = ConstraintBlock::Origin::kAttachment;
+    block.where = def.where;
     m.constraint_rows += joint->rows();
     block.constraint = std::move(joint);
     m.constraints.push_back(std::move(block));

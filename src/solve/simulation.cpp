@@ -182,9 +182,10 @@ void Simulation::Impl::build_info() {
     std::string names;
     for (const auto& n : info.redundant_constraints) names += (names.empty() ? "" : ", ") + n;
     w.push_back(std::to_string(info.redundant_equations) + " redundant constraint equation(s) at t = 0 in: " + names +
-                (dynamics->monitors_rank() ? " (left out only while they stay dependent: the rank is found again at "
-                                             "every solve)"
-                                           : " (dropped for the run)"));
+                (dynamics->monitors_rank() ? std::string(" (left out only while they stay dependent: the rank is found "
+                                                         "again at every ") +
+                                                 (dynamics->dense() ? "solve)" : "step)")
+                                           : std::string(" (dropped for the run)")));
   }
 }
 
@@ -261,6 +262,9 @@ void Simulation::Impl::advance(double t_end) {
       integrator->step(*dynamics, time, step, state);
       time = t_next;
       dynamics->impose_prescribed(time, state.q, state.qd);
+      // large systems: the rank of the bodies' small system after each step; the dependent
+      // rows are derived again when it changed (small systems find it at every solve)
+      if (dynamics->update_rank(time, state.q)) integrator->reset();
 
       // coordinate projection after the step
       const CorrectionDef& c = dynamics->correction();

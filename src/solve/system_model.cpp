@@ -83,10 +83,11 @@ std::unique_ptr<SystemModel> build_system_model(const SceneDef& scene) {
   }
 
   // joints, then drivers, each a block of rows
-  auto add_block = [&](std::unique_ptr<Constraint> c, ConstraintBlock::Origin origin) {
+  auto add_block = [&](std::unique_ptr<Constraint> c, ConstraintBlock::Origin origin, const SourceLocation& where) {
     ConstraintBlock block;
     block.first_row = m.constraint_rows;
     block.origin = origin;
+    block.where = where;
     m.constraint_rows += c->rows();
     block.constraint = std::move(c);
     m.constraints.push_back(std::move(block));
@@ -94,7 +95,7 @@ std::unique_ptr<SystemModel> build_system_model(const SceneDef& scene) {
   for (const auto& def : scene.joints) {
     const int bi = m.body_index(def.body_i, def.where, "joint '" + def.name + "'");
     const int bj = m.body_index(def.body_j, def.where, "joint '" + def.name + "'");
-    add_block(make_joint(def, bi, bj, m.q0), ConstraintBlock::Origin::kJoint);
+    add_block(make_joint(def, bi, bj, m.q0), ConstraintBlock::Origin::kJoint, def.where);
     m.markers.push_back(joint_marker(def, bi, bj));
     ++m.joints;
   }
@@ -103,7 +104,7 @@ std::unique_ptr<SystemModel> build_system_model(const SceneDef& scene) {
     const bool relative =
         def.kind == DriverDef::Kind::kRelativeAngle || def.kind == DriverDef::Kind::kRelativePosition;
     const int bj = relative ? m.body_index(def.body_j, def.where, "driver '" + def.name + "'") : -1;
-    add_block(make_driver(def, bi, bj, m.q0), ConstraintBlock::Origin::kDriver);
+    add_block(make_driver(def, bi, bj, m.q0), ConstraintBlock::Origin::kDriver, def.where);
     MarkerSource marker;
     marker.kind = Snapshot::Marker::Kind::kDriver;
     marker.a = BodyPoint{bi, def.point_i};

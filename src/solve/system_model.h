@@ -24,6 +24,7 @@ struct ConstraintBlock {
   std::unique_ptr<Constraint> constraint;
   int first_row = 0;
   enum class Origin { kJoint, kDriver, kAttachment } origin = Origin::kJoint;
+  SourceLocation where;  // the scene entry it came from
 };
 
 // A point written to series.csv: a body-fixed point of a rigid body, or one particle.

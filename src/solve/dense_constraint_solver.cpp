@@ -133,6 +133,24 @@ bool DenseConstraintSolver::factorize(const double* w, const double* select, dou
   return lu_.isInvertible();
 }
 
+void DenseConstraintSolver::solve_lu(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  // FullPivLU's own solve in the kept buffers (its solve() takes a new work vector at every
+  // call): x = Q U^-1 L^-1 P b, the same operations in the same order
+  const Eigen::Index size = b.size(), rank = lu_.rank();
+  x.resize(size);
+  if (rank == 0) {
+    x.setZero();
+    return;
+  }
+  lu_work_.resize(size);
+  lu_work_ = lu_.permutationP() * b;
+  lu_.matrixLU().triangularView<Eigen::UnitLower>().solveInPlace(lu_work_);
+  lu_.matrixLU().topLeftCorner(rank, rank).triangularView<Eigen::Upper>().solveInPlace(lu_work_.head(rank));
+  const auto& q = lu_.permutationQ().indices();
+  for (Eigen::Index i = 0; i < rank; ++i) x[q[i]] = lu_work_[i];
+  for (Eigen::Index i = rank; i < size; ++i) x[q[i]] = 0.0;
+}
+
 void DenseConstraintSolver::solve(const double* a, const double* e, double* z, double* mu) {
   // b = S a, e~ = e / rho on the selected rows
   for (int c = 0; c < n_; ++c) b_[c] = a ? s_[c] * a[c] : 0.0;
@@ -141,7 +159,7 @@ void DenseConstraintSolver::solve(const double* a, const double* e, double* z, d
     kkt_rhs_.resize(n_ + rank_);
     kkt_rhs_.head(n_) = b_;
     for (int k = 0; k < rank_; ++k) kkt_rhs_[n_ + k] = e[selected_[k]] / rho_[selected_[k]];
-    kkt_x_ = lu_.solve(kkt_rhs_);
+    solve_lu(kkt_rhs_, kkt_x_);
     for (int c = 0; c < n_; ++c) z[c] = s_[c] * kkt_x_[c];
     for (int k = 0; k < rank_; ++k) mu[selected_[k]] = kkt_x_[n_ + k] / rho_[selected_[k]];
     return;

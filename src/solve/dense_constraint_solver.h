@@ -12,8 +12,8 @@
 //
 // When the weights are the selection weights the QR itself solves the system (z = W^-1/2 x,
 // x = b - Q1 (Q1^T b - R11^-T e~)); otherwise (massless or nearly massless bodies, whose
-// selection weight is raised) a dense LU of the selected rows' augmented matrix does. Buffers are sized once by resize(): no allocation in a
-// solve of the positive-weight path.
+// selection weight is raised) a dense LU of the selected rows' augmented matrix does. Buffers are
+// kept between solves: no allocation in a solve, nor in a factorisation while the rank stays.
 #pragma once
 
 #include <Eigen/Dense>
@@ -59,6 +59,9 @@ class DenseConstraintSolver {
   void apply_q(Eigen::VectorXd& v, int count) const;
   Eigen::MatrixXd kkt_;
   Eigen::FullPivLU<Eigen::MatrixXd> lu_;
+  Eigen::VectorXd lu_work_;
+  // x = kkt_^-1 b through lu_, in the kept buffers
+  void solve_lu(const Eigen::VectorXd& b, Eigen::VectorXd& x);
   std::vector<int> selected_, dependent_;
 };
 

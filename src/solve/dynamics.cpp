@@ -204,6 +204,7 @@ void Dynamics::analyse(double t) {
     dense_acceleration_.set_late_rows(dropped_);
     dense_projection_.set_late_rows(dropped_);
     last_dependent_ = dropped_;
+    last_dependent_.reserve(rows);  // copied into at each change of rank: no allocation then
     rank_changes_ = 0;
   }
 

@@ -230,6 +230,7 @@ void Simulation::Impl::initialize() {
                           1e-12);
   integrator->reset();
   passage = Passage{};
+  passage.rows.reserve(model->constraint_rows);  // filled while passing a singular position
   passage.seen_changes = dynamics->rank_changes();
   passage.stable_dependent = dynamics->dropped_rows().size();
   initialized = true;

@@ -589,6 +589,13 @@ Sample Simulation::sample() const {
   return out;
 }
 
+Vec2 Simulation::probe_position(int index) const {
+  const Impl& s = *impl_;
+  const auto& p = s.model->probes.at(static_cast<size_t>(index));
+  if (p.is_particle()) return Vec2(s.state.q[p.particle_coordinate], s.state.q[p.particle_coordinate + 1]);
+  return p.point.position(s.state.q);
+}
+
 void Simulation::fill_snapshot(Snapshot& out) const {
   Impl& s = *impl_;
   const SystemModel& m = *s.model;

@@ -95,6 +95,9 @@ class Simulation {
 
   std::vector<std::string> probe_columns() const;  // "probe.<name>.x", ...
   Sample sample() const;
+  // Global position of probe `index` (scene order) now: the cheap read a caller that records a
+  // trajectory at every step needs (sample() computes energies and violations too).
+  Vec2 probe_position(int index) const;
   void fill_snapshot(Snapshot& out) const;
 
   LiveSettings settings() const;

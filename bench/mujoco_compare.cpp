@@ -214,7 +214,7 @@ struct Stall {
   double lowest = kInf;
   int since = 0;
   bool stalled(double error) {
-    if (error < 0.5 * lowest) {
+    if (error < 0.9 * lowest) {
       lowest = error;
       since = 0;
     } else {

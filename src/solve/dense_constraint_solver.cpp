@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace periflex {
 
@@ -20,6 +21,8 @@ void DenseConstraintSolver::resize(int n, int m) {
   b_.resize(n);
   c_.resize(n);
   x_.resize(n);
+  d_.resize(n);
+  e_.resize(n);
   selected_.reserve(m);
   dependent_.reserve(m);
 }
@@ -120,34 +123,70 @@ bool DenseConstraintSolver::factorize(const double* w, const double* select, dou
   std::sort(dependent_.begin(), dependent_.end());
   if (positive_) return true;
 
-  // massless coordinates: the augmented matrix of the selected rows, in the scaled variables
-  // x = S^-1 z (unit diagonal where there is mass, zero where there is none)
-  const int size = n_ + rank_;
-  kkt_.setZero(size, size);
-  for (int c = 0; c < n_; ++c) kkt_(c, c) = w[c] * s_[c] * s_[c];
-  for (int k = 0; k < rank_; ++k) {
-    kkt_.block(0, n_ + k, n_, 1) = a_.col(selected_[k]);
-    kkt_.block(n_ + k, 0, 1, n_) = a_.col(selected_[k]).transpose();
+  // massless coordinates: the part of x the selected rows leave free is x = N v, with N = Q2 the
+  // columns of Q past the rank (an orthonormal basis of what the selected rows do not see), and
+  // N^T D N v = N^T (b - D x1) fixes it, D = W S^2 (one where there is mass, zero where there is
+  // none). The same QR serves; the reduced matrix is small and positive definite unless a
+  // massless direction escapes every selected row (then the solve is refused)
+  const int p = n_ - rank_;
+  for (int c = 0; c < n_; ++c) d_[c] = w[c] * s_[c] * s_[c];
+  null_.resize(n_, p);
+  for (int j = 0; j < p; ++j) {
+    e_.setZero();
+    e_[rank_ + j] = 1.0;
+    apply_q(e_, rank_);
+    null_.col(j) = e_;
   }
-  lu_.compute(kkt_);
-  return lu_.isInvertible();
+  reduced_.resize(p, p);
+  for (int i = 0; i < p; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      double v = 0.0;
+      for (int c = 0; c < n_; ++c) v += null_(c, i) * d_[c] * null_(c, j);
+      reduced_(i, j) = reduced_(j, i) = v;
+    }
+  }
+  if (p == 0) return true;
+  reduced_llt_.compute(reduced_);
+  if (reduced_llt_.info() != Eigen::Success) return false;
+  // a pivot at round-off level of the largest weight: a massless direction no row holds
+  const double floor = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, d_.maxCoeff()) * n_;
+  return (reduced_llt_.matrixLLT().diagonal().array().square() > floor).all();
 }
 
 void DenseConstraintSolver::solve(const double* a, const double* e, double* z, double* mu) {
   // b = S a, e~ = e / rho on the selected rows
   for (int c = 0; c < n_; ++c) b_[c] = a ? s_[c] * a[c] : 0.0;
   for (int r = 0; r < m_; ++r) mu[r] = 0.0;
+  const Eigen::MatrixXd& r = qr_;
   if (!positive_) {
-    kkt_rhs_.resize(n_ + rank_);
-    kkt_rhs_.head(n_) = b_;
-    for (int k = 0; k < rank_; ++k) kkt_rhs_[n_ + k] = e[selected_[k]] / rho_[selected_[k]];
-    kkt_x_ = lu_.solve(kkt_rhs_);
-    for (int c = 0; c < n_; ++c) z[c] = s_[c] * kkt_x_[c];
-    for (int k = 0; k < rank_; ++k) mu[selected_[k]] = kkt_x_[n_ + k] / rho_[selected_[k]];
+    // x1 = Q1 R11^-T e~, then x = x1 + N v with N^T D N v = N^T (b - D x1)
+    for (int k = 0; k < rank_; ++k) {
+      double y = e[selected_[k]] / rho_[selected_[k]];
+      for (int i = 0; i < k; ++i) y -= r(i, k) * x_[i];
+      x_[k] = y / r(k, k);
+    }
+    for (int k = rank_; k < n_; ++k) x_[k] = 0.0;
+    apply_q(x_, rank_);
+    const int p = n_ - rank_;
+    if (p > 0) {
+      for (int c = 0; c < n_; ++c) c_[c] = b_[c] - d_[c] * x_[c];
+      v_.noalias() = null_.transpose() * c_;
+      reduced_llt_.solveInPlace(v_);
+      x_.noalias() += null_ * v_;
+    }
+    // multipliers: R11 mu~ = Q1^T (b - D x)
+    for (int c = 0; c < n_; ++c) c_[c] = b_[c] - d_[c] * x_[c];
+    apply_q_transpose(c_, rank_);
+    for (int k = rank_ - 1; k >= 0; --k) {
+      double v = c_[k];
+      for (int i = k + 1; i < rank_; ++i) v -= r(k, i) * c_[i];
+      c_[k] = v / r(k, k);
+    }
+    for (int k = 0; k < rank_; ++k) mu[selected_[k]] = c_[k] / rho_[selected_[k]];
+    for (int c = 0; c < n_; ++c) z[c] = s_[c] * x_[c];
     return;
   }
   // y = R11^-T e~ (forward substitution), c = Q1^T b
-  const Eigen::MatrixXd& r = qr_;
   c_ = b_;
   apply_q_transpose(c_, rank_);
   for (int k = 0; k < rank_; ++k) {

@@ -12,8 +12,10 @@
 //
 // When the weights are the selection weights the QR itself solves the system (z = W^-1/2 x,
 // x = b - Q1 (Q1^T b - R11^-T e~)); otherwise (massless or nearly massless bodies, whose
-// selection weight is raised) a dense LU of the selected rows' augmented matrix does. Buffers are sized once by resize(): no allocation in a
-// solve of the positive-weight path.
+// selection weight is raised) the same QR with the null-space method does: the part the rows fix
+// from R11, the rest from a small positive definite system over Q2 (refused when singular: a
+// massless direction that no selected row holds). Buffers are kept between solves: no
+// allocation in a solve, nor in a factorisation while the rank stays.
 #pragma once
 
 #include <Eigen/Dense>
@@ -49,7 +51,7 @@ class DenseConstraintSolver {
   bool positive_ = true;
   double smallest_pivot_ = 1.0;
   Eigen::MatrixXd j_, a_;
-  Eigen::VectorXd s_, rho_, b_, c_, x_, kkt_rhs_, kkt_x_;
+  Eigen::VectorXd s_, rho_, b_, c_, x_;
   Eigen::MatrixXd qr_;               // Householder vectors below the diagonal, R above
   Eigen::VectorXd tau_, norm2_;      // reflector factors; remaining squared column norms
   std::vector<int> perm_;            // column k of qr_ is row perm_[k] of J
@@ -57,8 +59,10 @@ class DenseConstraintSolver {
   // Applies H_{count-1} ... H_0 (transpose) or H_0 ... H_{count-1} to v.
   void apply_q_transpose(Eigen::VectorXd& v, int count) const;
   void apply_q(Eigen::VectorXd& v, int count) const;
-  Eigen::MatrixXd kkt_;
-  Eigen::FullPivLU<Eigen::MatrixXd> lu_;
+  // massless coordinates: D = W S^2, the null-space basis N = Q2 and N^T D N (Cholesky)
+  Eigen::VectorXd d_, e_, v_;
+  Eigen::MatrixXd null_, reduced_;
+  Eigen::LLT<Eigen::MatrixXd> reduced_llt_;
   std::vector<int> selected_, dependent_;
 };
 

@@ -92,8 +92,13 @@ class RungeKutta4 final : public Integrator {
   void step(OdeSystem& system, double t, double dt, OdeState& s) override {
     static constexpr std::array<double, 4> kC = {0.0, 0.5, 0.5, 1.0};
     static constexpr std::array<double, 4> kB = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
-    const Eigen::VectorXd q0 = s.q, qd0 = s.qd;
-    Eigen::VectorXd dq = Eigen::VectorXd::Zero(q0.size()), dqd = Eigen::VectorXd::Zero(q0.size());
+    // the start state and the weighted sums of the slopes, in kept buffers (no allocation)
+    q0_ = s.q;
+    qd0_ = s.qd;
+    dq_.setZero(q0_.size());
+    dqd_.setZero(q0_.size());
+    const Eigen::VectorXd &q0 = q0_, &qd0 = qd0_;
+    Eigen::VectorXd &dq = dq_, &dqd = dqd_;
     Eigen::Vector3d dwork = Eigen::Vector3d::Zero();
     // stage k evaluates at q0 + c_k h K_{k-1}; the stage velocity is the position slope
     for (int k = 0; k < 4; ++k) {
@@ -117,7 +122,7 @@ class RungeKutta4 final : public Integrator {
 
  private:
   std::string name_ = "rk4";
-  Eigen::VectorXd q_stage_, qd_stage_, qdd_;
+  Eigen::VectorXd q0_, qd0_, dq_, dqd_, q_stage_, qd_stage_, qdd_;
   Eigen::Vector3d power_;
 };
 

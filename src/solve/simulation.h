@@ -95,6 +95,9 @@ class Simulation {
 
   std::vector<std::string> probe_columns() const;  // "probe.<name>.x", ...
   Sample sample() const;
+  // Global position of probe `index` (scene order) now: the cheap read a caller that records a
+  // trajectory at every step needs (sample() computes energies and violations too).
+  Vec2 probe_position(int index) const;
   void fill_snapshot(Snapshot& out) const;
 
   LiveSettings settings() const;
@@ -106,7 +109,8 @@ class Simulation {
   // grab again only moves the target. Returns the total stiffness [N/m] (0: nothing held).
   double set_mouse_spring(const std::optional<MouseSpring>& spring);
 
-  // Wall-clock seconds spent in each part of stepping so far, for profiling reports.
+  // Wall-clock seconds spent in each part of stepping so far, for profiling reports (forces and
+  // constraints estimated from one evaluation in eight).
   struct Timing { double forces = 0, constraints = 0, integration = 0, fracture = 0; };
   Timing timing() const;
 

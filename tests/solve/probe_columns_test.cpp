@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "solve/simulation.h"
 #include "test_scenes.h"
@@ -31,6 +32,26 @@ TEST(ProbeColumns, RigidProbeReportsTheAngularVelocity) {
     EXPECT_NEAR(omega, (after - before) / (2 * h), 1e-5 * (1 + std::abs(omega))) << "t = " << t;
     EXPECT_GT(std::abs(omega), 0.1);
   }
+}
+
+// probe_position, the cheap read, gives the sample's x and y of each probe as the body moves
+TEST(ProbeColumns, ProbePositionMatchesTheSample) {
+  SceneDef s = test::double_pendulum("rk4", 1e-3, CorrectionDef::Method::kProjection);
+  s.probes.push_back({"upper_tip", "upper", Vec2(0.5, 0.0), {}});
+  s.probes.push_back({"lower_tip", "lower", Vec2(0.5, 0.0), {}});
+  Simulation sim(s);
+  sim.initialize();
+  for (double t : {0.0, 0.25, 0.8}) {
+    sim.advance_to(t);
+    const auto values = sim.sample().probe_values;
+    for (int p = 0; p < 2; ++p) {
+      const Vec2 at = sim.probe_position(p);
+      EXPECT_EQ(at.x(), values[6 * p]) << "probe " << p << ", t = " << t;
+      EXPECT_EQ(at.y(), values[6 * p + 1]) << "probe " << p << ", t = " << t;
+    }
+  }
+  EXPECT_LT(sim.probe_position(1).y(), -0.5);  // the lower bar has swung down
+  EXPECT_THROW(sim.probe_position(2), std::out_of_range);
 }
 
 }  // namespace

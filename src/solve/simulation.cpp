@@ -138,7 +138,9 @@ void Simulation::Impl::build_info() {
   info.constraint_equations = m.constraint_rows;
   info.redundant_equations = static_cast<int>(dynamics->dropped_rows().size());
   info.redundant_constraints = dynamics->dropped_blocks();
-  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) - dynamics->independent_rows();
+  // a held zero-inertia angle is no degree of freedom: nothing determines or moves it
+  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) -
+                            static_cast<int>(dynamics->held_rotations().size()) - dynamics->independent_rows();
   info.critical_time_step = critical_step;
 
   // what runs: only the parts this scene needs

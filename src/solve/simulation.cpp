@@ -200,11 +200,14 @@ void Simulation::Impl::initialize() {
   fracture_energy = 0.0;
   dynamics->impose_prescribed(0.0, state.q, state.qd);
 
-  // explicit integration of particles is bounded by their critical step
+  // explicit integration of particles is bounded by their critical step: a step the input chose
+  // above it is bad input, named where it was set (scene line, --set or --dt); a step changed
+  // while running (the GUI's live settings) is a numerical stop
   if (stability_bound_applies() && live.dt > allowed_step() && !scene.solver.auto_substep) {
-    throw NumericalError({"time step", 0, 0.0, stability_message(live.dt),
-                          "lower solver.dt below " + number(allowed_step()) +
-                              " or set solver.auto_substep = true"});
+    const std::string remedy = "lower solver.dt below " + number(allowed_step()) + " or set solver.auto_substep = true";
+    if (live.dt == scene.solver.dt)
+      throw InputError(scene.locate("solver.dt"), stability_message(live.dt) + "; " + remedy);
+    throw NumericalError({"time step", 0, 0.0, stability_message(live.dt), remedy});
   }
 
   // consistent initial conditions: positions (Newton), then velocities

@@ -148,6 +148,7 @@ struct Track {
   std::vector<std::vector<double>> probes;  // x0, y0, x1, y1, ... of the selected probes
   std::vector<double> crack;
   std::vector<long> broken;
+  std::vector<double> balance;              // energy balance at each comparison time [J]
   double violation = 0.0, energy_error = 0.0, max_kinetic = 0.0;
   long steps = 0;
   double wall = 0.0;
@@ -183,6 +184,7 @@ Track run_once(const SceneDef& scene, const StudyDef& study, const std::vector<d
     track.probes.push_back(std::move(p));
     track.violation = std::max(track.violation, s.violation_position);
     track.energy_error = std::max(track.energy_error, std::abs(s.energies.balance));
+    track.balance.push_back(s.energies.balance);
     track.max_kinetic = std::max(track.max_kinetic, s.energies.kinetic);
     track.broken.push_back(s.broken_bonds);
     if (fracture) {
@@ -322,6 +324,7 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
                      "compare_interval " + format_g(interval) + " must divide the end time " + format_g(end_time));
   std::vector<double> times(count + 1);
   for (long k = 0; k <= count; ++k) times[k] = k * interval;
+  result.times = times;
 
   // every fixed-step run must land on the comparison times
   double smallest_dt = std::numeric_limits<double>::infinity();
@@ -432,6 +435,8 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
             row.violation = track.violation;
             row.energy_error = track.energy_error;
             row.energy_error_rel = track.max_kinetic > 0.0 ? track.energy_error / track.max_kinetic : 0.0;
+            for (double b : track.balance)
+              row.energy_trace.push_back(track.max_kinetic > 0.0 ? std::abs(b) / track.max_kinetic : std::abs(b));
             double sum_sq = 0.0;
             const long end_broken = reference->broken(times.size() - 1);
             for (size_t k = 0; k < track.times.size(); ++k) {

@@ -24,6 +24,7 @@ namespace {
 double peak_resident_bytes(const std::vector<std::string>& arguments) {
   std::vector<std::string> argv = {PERIFLEX_BINARY, "run"};
   argv.insert(argv.end(), arguments.begin(), arguments.end());
+  std::fflush(stdout);  // the child must not print what this process has buffered
   const pid_t pid = fork();
   if (pid == 0) {
     std::vector<char*> raw;
@@ -59,8 +60,9 @@ TEST(SceneBudget, MemoryEstimateIsWithinOneAndAHalfOfThePeakOfTheRun) {
     std::filesystem::remove_all(dir);
     const std::string set = "solver.integrator=" + c.integrator;
     const SceneBudget budget = check_scene_budget(load_scene(c.scene, {set}));
-    const double peak = peak_resident_bytes({c.scene, "--set", set, "--until", std::to_string(c.until), "--out",
-                                             dir.string(), "--quiet"});
+    char until[32];
+    std::snprintf(until, sizeof until, "%.17g", c.until);
+    const double peak = peak_resident_bytes({c.scene, "--set", set, "--until", until, "--out", dir.string(), "--quiet"});
     ASSERT_GT(peak, 0.0) << c.scene << " did not run";
     const double ratio = budget.memory / peak;
     std::printf("%s (%s): estimate %.1f MB, peak %.1f MB, ratio %.2f\n",

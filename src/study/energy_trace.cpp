@@ -61,7 +61,8 @@ std::string energy_trace_gnuplot_script(const StudyResult& result, const std::st
   out << "plot ";
   for (size_t s = 0; s < order.size(); ++s) {
     const size_t column = chosen[order[s]] + 2;  // column 1 is t
-    out << (s ? ", \\\n     " : "") << "'" << csv_path << "' every ::1 using 1:(column(" << column
+    // rows from the second comparison time: at t = 0 the balance is zero by definition
+    out << (s ? ", \\\n     " : "") << "'" << csv_path << "' every ::2 using 1:(column(" << column
         << ") > 1e-16 ? column(" << column << ") : 1e-16) with lines lw 2 title '"
         << energy_run_label(result.rows[chosen[order[s]]]) << "' noenhanced";
   }

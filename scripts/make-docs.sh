@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates every published result: runs the work-precision studies of scenes/studies/ and
-# writes docs/work_precision.md with its figures in docs/figures/. About 5-10 minutes on 2 cores.
+# writes docs/work_precision.md with its figures in docs/figures/. About 20 minutes on 2 cores (the
+# A02 study's tightest dopri54 tolerance alone takes minutes near its dead points).
 #
 #   scripts/make-docs.sh [BUILD_DIR]          default BUILD_DIR: build (configured Release)
 #   PERIFLEX=/path/to/periflex scripts/make-docs.sh
@@ -31,12 +32,14 @@ figures=$root/docs/figures
 mkdir -p "$out" "$figures"
 
 # rigid (exact or converged references), flexible (converged), spatial (known answers)
-studies=(pendulum slider_crank double_pendulum flexible_pendulum notched_plate cantilever wave_speed)
+studies=(pendulum slider_crank double_pendulum a01_pendulum a02_double_four_bar flexible_pendulum notched_plate
+         cantilever wave_speed)
 start=$SECONDS
 for s in "${studies[@]}"; do
   echo "== study $s"
   "$periflex" study "$root/scenes/studies/$s.toml" --out "$out/$s" --quiet
   if [[ -f $out/$s/study.png ]]; then cp "$out/$s/study.png" "$figures/$s.png"; fi
+  if [[ -f $out/$s/energy.png ]]; then cp "$out/$s/energy.png" "$figures/${s}_energy.png"; fi
 done
 
 # the document: fixed text, the guidance table gathered from every study, then each study
@@ -61,8 +64,28 @@ the Hairer / Mazzia test set and the SciML benchmarks. Run one yourself with
   probes from their start, so 1e-3 means a thousandth of how far the mechanism moves.
 - **Reference**: the exact motion where one exists (`pendulum_exact`: the large-amplitude
   pendulum through Jacobi elliptic functions; `slider_crank_exact`: closed-form kinematics of
-  the driven slider-crank), otherwise a converged run at a much smaller step, whose own error
-  is estimated by comparing it with a run at twice its step and printed with the study.
+  the driven slider-crank), a trajectory from a CSV file (`csv`: a benchmark's published or
+  independently computed motion; the IFToMM A01 and A02 studies read theirs from
+  `scenes/studies/references/`, written by `scripts/make-reference-csv.py` apart from
+  periflex), otherwise a converged run at a much smaller step, whose own error is estimated by
+  comparing it with a run at twice its step and printed with the study.
+- **Reference files** (`reference = "csv"`): a header line of comma-separated names, then one
+  row of numbers per sample (blank lines and `#` lines skipped). The time column (`t` by
+  default, the name `series.csv` uses, so a run's own output can serve) must increase
+  strictly and cover the study from 0 to its end time; the compared columns are named as the
+  run's probe columns (`probe.bob.x`, `.y`, `.angle`, `.omega`, ...), and a `.x` with its `.y`
+  counts as one point (their distance), any other column alone. Between samples the values
+  are interpolated by the Lagrange polynomial of degree 5 through the six nearest samples:
+  its error is at most `h^6 max|x^(6)| * 3.52 / 720`, about `(omega h)^6 / 200` of the
+  amplitude for a motion of angular frequency omega sampled every h (4e-12 of it at
+  omega h = 0.03; the A01 file at h = 0.005 s adds below 1e-11 m). A file with a missing
+  column, a cell that is not a finite number, a short row, times that stand still or go back,
+  or a span shorter than the study's is refused (exit 2) at its file, line, column and column
+  name, or at the study key that named it.
+- **Energy against time**: `energy.csv` holds |energy balance| / largest kinetic energy at
+  every comparison time for every run, and `energy.png` plots it for the largest step of
+  each method: bounded oscillation is what the symplectic integrators promise, steady growth
+  is drift.
 - **Energy error**: largest |energy balance| (kinetic + potential + dissipated + fracture -
   external work - driver work, minus its start value), relative to the largest kinetic energy.
 - **Violation**: largest |Phi| at the comparison times.
@@ -107,6 +130,20 @@ free coordinate, such as the driven slider-crank, it recovers the exact kinemati
   non-stiff rigid problems it is the slowest way to an accuracy. It earns its place on stiff
   flexible bodies, at steps tens to hundreds of times above the explicit critical step
   (tests/study/hht_stiff_bar_test.cpp), where the explicit schemes cannot run at all.
+- IFToMM A01 (20 s of the 2000 s benchmark, against its closed form from a file): every
+  integrator converges at its order (symplectic Euler 1.07, Verlet 1.92, RK4 4 to 5, HHT 1.91);
+  Dormand-Prince is the fastest to 1e-3 and to 1e-6. The energy plot shows what each scheme
+  does over ten swings: the symplectic ones and RK4 with projection keep a bounded, oscillating
+  error; RK4 without correction drifts upwards steadily.
+- IFToMM A02 (10 s through 20 dead points, against the one-degree-of-freedom equation from a
+  file): RK4 with projection reaches 5e-8 at dt = 2.5e-3 but only 2.7e-5 at dt = 1e-3, where
+  more stages land within the rank threshold of a dead point and are solved without the
+  dependent rows (docs/solver.md); several runs stop with exit 3 at a passage whose energy
+  balance jumped (symplectic Euler at 2e-3, RK4 with Baumgarte at 1e-3, HHT at 1e-3 and 5e-4
+  with a failed Newton solve or a singular Jacobian) rather than switch branch silently; RK4
+  with Baumgarte at 5e-3 ends on a wrong path (error 0.98 of the excursion) with its energy
+  error, 0.18, saying so; Dormand-Prince below tol 1e-7 spends most of its time in rejected
+  steps near the dead points (224 s at 1e-9) for no gain in accuracy.
 - Fracture: on the notched plate the error does not fall steadily with dt. Bonds break when a
   stretch crosses a threshold, so a step-size change moves break events by a step and the paths
   differ by about a grid spacing; the crack-tip error is of the order of the grid spacing and
@@ -126,7 +163,8 @@ A study file (`scenes/studies/*.toml`) names a scene and a grid of methods:
 |---|---|
 | `[study] scene` | scene file, relative to the study file |
 | `mode` | `time` (default: integrators x steps x corrections) or `refine` (grid spacing x horizon ratio) |
-| `reference` | `pendulum_exact`, `slider_crank_exact` or `converged` (default) |
+| `reference` | `pendulum_exact`, `slider_crank_exact`, `csv` or `converged` (default) |
+| `reference_file`, `reference_time_column`, `columns` | `csv`: the trajectory file (relative to the study file), its time column (default `t`) and the run columns compared (default `x` and `y` of the compared probes) |
 | `reference_integrator`, `reference_dt`, `reference_correction` | the converged run (default rk4, the smallest dt / 8, the scene's correction) |
 | `end_time`, `compare_interval` | run length (default the scene's) and spacing of the error samples (default end / 100); every dt must divide the interval |
 | `repeats` | timed runs per grid point; the median is reported |
@@ -152,6 +190,9 @@ EOF
     cat "$out/$s/study.md"
     echo
     if [[ -f $figures/$s.png ]]; then echo "![$s: error against run time](figures/$s.png)"; echo; fi
+    if [[ -f $figures/${s}_energy.png ]]; then
+      echo "![$s: energy error against time](figures/${s}_energy.png)"; echo
+    fi
   done
   echo "_Generated in $((SECONDS - start)) s on $(nproc) cores._"
 } > "$doc"

@@ -24,11 +24,15 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
   Simulation sim(scene);
 
   // Initial conditions are made consistent here, which also finds redundant constraints.
-  std::string init_failure;
+  // A step above the critical one is bad input found here: the report is still printed (it
+  // names the critical step), then the error.
+  std::string init_failure, input_failure;
   try {
     sim.initialize();
   } catch (const NumericalError& error) {
     init_failure = error.what();
+  } catch (const InputError& error) {
+    input_failure = error.what();
   }
 
   const ModelInfo& m = sim.info();
@@ -51,9 +55,19 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
     std::printf("  %-22s%g s (dt / dt_crit = %.3g)\n", "critical time step", m.critical_time_step,
                 s.dt / m.critical_time_step);
   }
+  // what the budget expects the flexible bodies to need (compare with the limits it is held to)
+  if (m.flex_bodies > 0) {
+    const SceneBudget budget = check_scene_budget(scene);
+    std::printf("  %-22s%.3g MB (limit %.3g MB)\n", "memory estimate", budget.memory / 1e6,
+                memory_cap(scene.limits) / 1e6);
+  }
   std::printf("  %-22s%.3g (positions), %.3g (velocities)\n", "initial correction", m.initial_position_correction,
               m.initial_velocity_correction);
   for (const auto& w : m.warnings) std::printf("warning: %s\n", w.c_str());
+  if (!input_failure.empty()) {
+    std::fprintf(stderr, "periflex: error: %s\n", input_failure.c_str());
+    return kExitBadInput;
+  }
   if (!init_failure.empty()) {
     std::fprintf(stderr, "periflex: numerical failure at set-up: %s\n", init_failure.c_str());
     return kExitNumerical;

@@ -38,6 +38,7 @@ int study_command(const StudyOptions& options) {
     std::printf("wrote %s\nwrote %s\n", outputs.csv_path.c_str(), outputs.markdown_path.c_str());
     if (!outputs.plot_path.empty()) std::printf("wrote %s\n", outputs.plot_path.c_str());
     else std::printf("%s\n", outputs.plot_message.c_str());
+    if (!outputs.energy_plot_path.empty()) std::printf("wrote %s\n", outputs.energy_plot_path.c_str());
     return kExitOk;
   } catch (const InputError& error) {
     std::fprintf(stderr, "periflex: error: %s\n", error.what());

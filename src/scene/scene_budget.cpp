@@ -25,22 +25,73 @@ std::string figure(double value) {
 
 [[noreturn]] void refuse(const SourceLocation& where, const std::string& message) { throw InputError(where, message); }
 
-SourceLocation flex_key(const FlexBodyDef& flex, const std::string& key) {
+// Where a flexible body's key was set: its line, or the --set that changed it.
+SourceLocation flex_key(const SceneDef& scene, const FlexBodyDef& flex, const std::string& key) {
+  const std::string dotted = "flex_body." + flex.name + "." + key;
+  if (scene.origin.count(dotted)) return scene.locate(dotted);
   SourceLocation where = flex.where;
-  where.key = "flex_body." + flex.name + "." + key;
+  where.key = dotted;
   return where;
 }
 
-// Neighbours of a particle in the interior of a grid at this horizon ratio: the grid offsets
-// within the reach the neighbour search uses.
-double neighbours_per_particle(const FlexBodyDef& flex) {
+// The key to blame for a body's bonds and bytes: the one a --set changed, else grid_spacing.
+SourceLocation size_key(const SceneDef& scene, const FlexBodyDef& flex) {
+  for (const char* key : {"grid_spacing", "horizon_ratio"}) {
+    const SourceLocation where = flex_key(scene, flex, key);
+    if (where.file == "--set") return where;
+  }
+  return flex_key(scene, flex, "grid_spacing");
+}
+
+// Particles and stored neighbours (each bond counted from both ends) of a flexible body, exact:
+// the runs of cells the filling scan visits, and for every grid offset within the neighbour
+// search's reach the cells whose partner at that offset is a cell too (runs of row j against the
+// runs of row j + b shifted by a). Linear in the runs; a thin sliver, whose particles are mostly
+// near an edge with a fraction of an interior particle's neighbours, is counted as it is.
+struct BodyCount {
+  double particles = 0.0, neighbours = 0.0;
+};
+
+BodyCount count_particles_and_neighbours(const FlexBodyDef& flex, const GridFrame& frame) {
+  // runs by row, rows in increasing order
+  std::vector<long> row_of;                      // row index j of each stored row
+  std::vector<std::vector<std::pair<long, long>>> runs;
+  BodyCount count;
+  scan_grid(flex.shape, flex.holes, frame, {}, [&](long j, long begin, long end) {
+    if (row_of.empty() || row_of.back() != j) {
+      row_of.push_back(j);
+      runs.emplace_back();
+    }
+    runs.back().emplace_back(begin, end);
+    count.particles += static_cast<double>(end - begin);
+  });
+  // the offsets the neighbour search finds (pd_body.cpp): |offset| <= reach, in cells
   const double reach = flex.horizon_ratio + (flex.partial_volume_correction ? 0.5 : 0.0);
-  const int r = static_cast<int>(std::ceil(reach)) + 1;
-  long count = 0;
-  for (int a = -r; a <= r; ++a)
-    for (int b = -r; b <= r; ++b)
-      if ((a != 0 || b != 0) && a * a + b * b <= reach * reach * (1 + 1e-9)) ++count;
-  return static_cast<double>(count);
+  const long r = static_cast<long>(std::ceil(reach)) + 1;
+  for (long b = -r; b <= r; ++b) {
+    for (long a = -r; a <= r; ++a) {
+      if ((a == 0 && b == 0) || double(a * a + b * b) > reach * reach * (1 + 1e-9)) continue;
+      // rows j and j + b (targets increase with j, so one pointer walks the rows once)
+      size_t other = 0;
+      for (size_t k = 0; k < row_of.size(); ++k) {
+        const long target = row_of[k] + b;
+        while (other < row_of.size() && row_of[other] < target) ++other;
+        if (other >= row_of.size() || row_of[other] != target) continue;
+        const auto& here = runs[k];
+        const auto& there = runs[other];
+        size_t p = 0, q = 0;
+        while (p < here.size() && q < there.size()) {
+          // cell i of row j pairs with cell i + a of row j + b
+          const long lo = std::max(here[p].first, there[q].first - a);
+          const long hi = std::min(here[p].second, there[q].second - a);
+          if (hi > lo) count.neighbours += static_cast<double>(hi - lo);
+          if (here[p].second < there[q].second - a) ++p;
+          else ++q;
+        }
+      }
+    }
+  }
+  return count;
 }
 
 // The scene's time-stepping figures: dt against end_time, steps, rows, frames.
@@ -94,39 +145,49 @@ void check_time(const SceneDef& scene, const RunPlan& plan, SceneBudget& budget)
 // Particles (exact), bonds and bytes of every flexible body, against the scene's limits.
 void check_particles(const SceneDef& scene, SceneBudget& budget) {
   const LimitsDef& l = scene.limits;
+  std::vector<double> body_memory;  // bytes per body
   for (const FlexBodyDef& flex : scene.flex_bodies) {
     // the grid must fit its 32-bit indices and be scanned in bounded time
     const Vec2 extent = grid_extent_cells(flex.shape, flex.grid_spacing);
     if (!(extent.maxCoeff() <= 2e9))
-      refuse(flex_key(flex, "grid_spacing"), "the grid of flexible body '" + flex.name + "' would span " +
+      refuse(flex_key(scene, flex, "grid_spacing"), "the grid of flexible body '" + flex.name + "' would span " +
                                                  figure(extent.maxCoeff()) +
                                                  " cells across, more than 2e9; raise grid_spacing");
     const GridFrame frame = grid_frame(flex.shape, flex.grid_spacing);
     const double work = grid_scan_work(flex.shape, flex.holes, frame);
     if (!(work <= l.max_grid_rows))
-      refuse(flex_key(flex, "grid_spacing"), "placing the particles of flexible body '" + flex.name +
+      refuse(flex_key(scene, flex, "grid_spacing"), "placing the particles of flexible body '" + flex.name +
                                                  "' would scan " + figure(work) +
                                                  " grid rows (rows x shapes, plus the rows polygon edges span), "
                                                  "more than limits.max_grid_rows = " + figure(l.max_grid_rows) +
                                                  "; raise grid_spacing or simplify the shape");
     // the exact count, by the scan that fills the grid
-    const double particles = static_cast<double>(count_grid_cells(flex.shape, flex.holes, frame));
-    const double neighbours = neighbours_per_particle(flex);
+    const BodyCount count = count_particles_and_neighbours(flex, frame);
+    const double particles = count.particles;
     budget.particles += particles;
-    budget.bonds += particles * neighbours / 2;
-    budget.memory += particles * (kBytesPerParticle + neighbours * kBytesPerNeighbor);
+    budget.bonds += count.neighbours / 2;
+    const std::string& integrator = scene.solver.integrator;
+    body_memory.push_back(particles * (kBytesPerParticle + integrator_bytes_per_particle(integrator)) +
+                          count.neighbours * (kBytesPerNeighbor + integrator_bytes_per_neighbor(integrator)));
+    budget.memory += body_memory.back();
     if (!(budget.particles <= l.max_particles))
-      refuse(flex_key(flex, "grid_spacing"),
+      refuse(flex_key(scene, flex, "grid_spacing"),
              "flexible body '" + flex.name + "' has " + figure(particles) + " particles" +
                  (scene.flex_bodies.size() > 1 ? ", bringing the scene to " + figure(budget.particles) : std::string()) +
                  ", more than limits.max_particles = " + figure(l.max_particles) +
                  " for the whole scene; raise grid_spacing or limits.max_particles");
   }
+  if (!scene.flex_bodies.empty()) budget.memory += kProgramBytes;
   const double cap = memory_cap(l);
   if (!(budget.memory <= cap)) {
     SourceLocation where = scene.locate("limits.max_memory");
-    if (scene.origin.count("limits.max_memory") == 0 && !scene.flex_bodies.empty())
-      where = flex_key(scene.flex_bodies.front(), "grid_spacing");
+    if (scene.origin.count("limits.max_memory") == 0 && !scene.flex_bodies.empty()) {
+      // the body that costs most, at the key that made it so
+      const FlexBodyDef* largest = &scene.flex_bodies.front();
+      for (size_t k = 0; k < scene.flex_bodies.size(); ++k)
+        if (body_memory[k] > body_memory[largest - scene.flex_bodies.data()]) largest = &scene.flex_bodies[k];
+      where = size_key(scene, *largest);
+    }
     refuse(where, "the flexible bodies need about " + figure(budget.memory / 1e9) + " GB (" + figure(budget.particles) +
                       " particles, " + figure(budget.bonds) + " bonds), more than the memory limit of " +
                       figure(cap / 1e9) + " GB; raise grid_spacing, lower horizon_ratio, or set limits.max_memory (bytes)");
@@ -146,6 +207,16 @@ void check_threads(const SceneDef& scene, const RunPlan& plan) {
 }
 
 }  // namespace
+
+double integrator_bytes_per_particle(const std::string& integrator) {
+  if (integrator == "rk4" || integrator == "hht" || integrator == "generalized_alpha") return 96.0;
+  if (integrator == "dopri54") return 272.0;
+  return 0.0;
+}
+
+double integrator_bytes_per_neighbor(const std::string& integrator) {
+  return integrator == "hht" || integrator == "generalized_alpha" ? 480.0 : 0.0;
+}
 
 int machine_cores() {
   const unsigned n = std::thread::hardware_concurrency();

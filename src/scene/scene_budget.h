@@ -10,6 +10,8 @@
 //   const SceneBudget budget = check_scene_budget(scene, plan);
 #pragma once
 
+#include <string>
+
 #include "core/error.h"
 #include "scene/scene_def.h"
 
@@ -27,17 +29,25 @@ struct RunPlan {
 struct SceneBudget {
   double particles = 0.0;   // all flexible bodies, exact
   double bonds = 0.0;       // an upper bound: particles x neighbours within the reach / 2
-  double memory = 0.0;      // bytes of particle and bond data
+  double memory = 0.0;      // bytes at the run's peak (program, particles, bonds, integrator)
   double steps = 0.0;       // end_time / dt (fixed-step integrators)
   double rows = 0.0;        // series.csv rows
   double frames = 0.0;      // rendered frames
 };
 
-// Bytes one particle and one stored neighbour (each bond is held from both ends) cost,
-// measured on glass_branching at two grid spacings and two horizons (about 100 and 28 bytes;
-// the rest is the margin for integrator stages and snapshots).
-constexpr double kBytesPerParticle = 400.0;
-constexpr double kBytesPerNeighbor = 32.0;
+// Peak memory of a run, fitted to the peak resident memory `/usr/bin/time` measures (2 cores,
+// Release build) on the notched plate, glass_branching and a 120 000-particle sliver two
+// particles thick (tests/data/scenes/thin_sliver.toml), whose neighbour counts per particle are
+// 34, 35 and 13: the program itself, then per particle and per stored neighbour (each bond held
+// from both ends) with the neighbours counted exactly. The integrators keep stage vectors
+// (per particle) and the implicit ones a sparse tangent and its factors (per neighbour).
+constexpr double kProgramBytes = 8e6;
+constexpr double kBytesPerParticle = 64.0;
+constexpr double kBytesPerNeighbor = 30.0;
+// Stage vectors of an integrator, per particle: rk4 96, dopri54 272, hht 96 (0 for the
+// symplectic ones); and the implicit integrators' tangent, per stored neighbour.
+double integrator_bytes_per_particle(const std::string& integrator);
+double integrator_bytes_per_neighbor(const std::string& integrator);
 
 // Cores of this machine (at least 1).
 int machine_cores();

@@ -471,6 +471,8 @@ class SceneBuilder {
     flex.thickness = in.number("thickness", flex.thickness, Sign::kPositive, true);
     check_range(in, "thickness", flex.thickness, 1e-9, 1e3, "m");
     flex.horizon_ratio = in.number("horizon_ratio", flex.horizon_ratio, Sign::kPositive);
+    // the budget names these where they were set, in the file or by --set
+    for (const char* key : {"grid_spacing", "horizon_ratio"}) note_origin(in, key);
     if (flex.horizon_ratio < 1.0)
       in.fail("horizon_ratio", "must be at least 1 (a horizon smaller than the grid spacing has no bonds), found " +
               format_number(flex.horizon_ratio));

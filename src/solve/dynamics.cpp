@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "coupling/rigid_flexible_joint.h"
+#include "solve/held_rotations.h"
 #include "solve/redundancy.h"
 
 namespace periflex {
@@ -64,12 +65,16 @@ void Dynamics::analyse(double t) {
       if (!model_.is_prescribed[c]) touched.insert(c);
     }
   }
+  // zero-inertia rotations no constraint sees leave the equations, held at their angle
+  held_ = find_held_rotations(model_, t);
+  for (int c : held_) touched.erase(c);
   constrained_.assign(touched.begin(), touched.end());
   local_.assign(n, -1);
   for (size_t k = 0; k < constrained_.size(); ++k) local_[constrained_[k]] = static_cast<int>(k);
   free_.clear();
   for (int c = 0; c < n; ++c) {
-    if (local_[c] < 0 && !model_.is_prescribed[c]) free_.push_back(c);
+    const bool held = std::find(held_.begin(), held_.end(), c) != held_.end();
+    if (local_[c] < 0 && !model_.is_prescribed[c] && !held) free_.push_back(c);
   }
 
   // a coordinate no constraint acts on needs mass of its own
@@ -616,6 +621,7 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
     if (flex->bond_damping() != 0.0 || flex->global_damping() != 0.0) dissipated += flex->dissipation_power(q, qd);
     external += flex->external_power(q, qd, t);
   }
+  if (!held_.empty()) check_held_rotations(model_, held_, g_, t);
   if (mouse_) {
     const Vec2 target = mouse_->target_at(t);
     if (mouse_->point.body >= 0) {

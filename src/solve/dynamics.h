@@ -88,6 +88,9 @@ class Dynamics final : public OdeSystem {
   // dt = 1e-4; 1e-3 keeps every step size from 2.5e-2 to 1.25e-5 on the physical branch; 1e-2
   // too, with a larger error from the steps spent without the row.
   static constexpr double kRankThreshold = 1e-3;
+  // Angles of zero-inertia bodies that no constraint sees and no force turns (see
+  // held_rotations.h): out of the equations, held at their initial value.
+  const std::vector<int>& held_rotations() const { return held_; }
   int constrained_coordinates() const { return static_cast<int>(constrained_.size()); }
   bool has_constraints() const { return !active_.empty(); }
 
@@ -180,7 +183,8 @@ class Dynamics final : public OdeSystem {
   // coordinate classes
   std::vector<int> constrained_;  // global indices, in local order
   std::vector<int> local_;        // global -> local (-1 when not constrained)
-  std::vector<int> free_;         // unconstrained, not prescribed
+  std::vector<int> free_;         // unconstrained, not prescribed, not held
+  std::vector<int> held_;         // zero-inertia angles held at their initial value
   std::vector<int> dropped_;      // global rows
   size_t initial_dropped_ = 0;    // dependent rows at t0
   // large systems: rows the rank monitor watches (increasing), the attachment rows that

@@ -138,7 +138,9 @@ void Simulation::Impl::build_info() {
   info.constraint_equations = m.constraint_rows;
   info.redundant_equations = static_cast<int>(dynamics->dropped_rows().size());
   info.redundant_constraints = dynamics->dropped_blocks();
-  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) - dynamics->independent_rows();
+  // a held zero-inertia angle is no degree of freedom: nothing determines or moves it
+  info.degrees_of_freedom = m.coordinate_count - static_cast<int>(m.prescribed.size()) -
+                            static_cast<int>(dynamics->held_rotations().size()) - dynamics->independent_rows();
   info.critical_time_step = critical_step;
 
   // what runs: only the parts this scene needs
@@ -199,11 +201,14 @@ void Simulation::Impl::initialize() {
   fracture_energy = 0.0;
   dynamics->impose_prescribed(0.0, state.q, state.qd);
 
-  // explicit integration of particles is bounded by their critical step
+  // explicit integration of particles is bounded by their critical step: a step the input chose
+  // above it is bad input, named where it was set (scene line, --set or --dt); a step changed
+  // while running (the GUI's live settings) is a numerical stop
   if (stability_bound_applies() && live.dt > allowed_step() && !scene.solver.auto_substep) {
-    throw NumericalError({"time step", 0, 0.0, stability_message(live.dt),
-                          "lower solver.dt below " + number(allowed_step()) +
-                              " or set solver.auto_substep = true"});
+    const std::string remedy = "lower solver.dt below " + number(allowed_step()) + " or set solver.auto_substep = true";
+    if (live.dt == scene.solver.dt)
+      throw InputError(scene.locate("solver.dt"), stability_message(live.dt) + "; " + remedy);
+    throw NumericalError({"time step", 0, 0.0, stability_message(live.dt), remedy});
   }
 
   // consistent initial conditions: positions (Newton), then velocities

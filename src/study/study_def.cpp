@@ -91,7 +91,22 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
   study.scene_overrides = string_list(s, "set");
   study.mode = s.choice("mode", {"time", "refine"}, "time") == "refine" ? StudyDef::Mode::kRefine
                                                                           : StudyDef::Mode::kTime;
-  study.reference = s.choice("reference", {"pendulum_exact", "slider_crank_exact", "converged"}, "converged");
+  study.reference = s.choice("reference", {"pendulum_exact", "slider_crank_exact", "converged", "csv"}, "converged");
+  // a reference trajectory from a file: which file, its time column and the compared columns
+  if (s.has("reference_file")) {
+    study.reference_file_where = context.locate(s.node("reference_file"), s.key_path("reference_file"));
+    const std::string csv = s.required_string("reference_file");
+    study.reference_file = std::filesystem::path(csv).is_absolute()
+                               ? csv : (file.parent_path() / csv).lexically_normal().string();
+  }
+  study.reference_time_column = s.string("reference_time_column", "t");
+  if (s.has("columns")) study.columns_where = context.locate(s.node("columns"), s.key_path("columns"));
+  study.columns = string_list(s, "columns");
+  if (study.reference == "csv" && study.reference_file.empty())
+    s.fail_missing("reference_file", "reference = \"csv\" needs the file of the reference trajectory");
+  if (study.reference != "csv" && (!study.reference_file.empty() || !study.columns.empty()))
+    s.fail(study.reference_file.empty() ? "columns" : "reference_file",
+           "only a reference = \"csv\" study reads a reference file and its columns");
   study.reference_integrator = s.string("reference_integrator", "rk4");
   study.reference_dt = s.number("reference_dt", 0.0, Sign::kNonNegative, true);
   if (s.has("reference_correction"))

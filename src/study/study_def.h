@@ -4,7 +4,9 @@
 //   [study]
 //   scene = "pendulum.toml"            # relative to the study file
 //   mode = "time"                      # time: integrators x steps; refine: grid spacing x horizon
-//   reference = "pendulum_exact"       # pendulum_exact | slider_crank_exact | converged
+//   reference = "pendulum_exact"       # pendulum_exact | slider_crank_exact | converged | csv
+//   reference_file = "a01.csv"         # csv: a time column and named columns, relative to the study
+//   columns = ["probe.bob.x", "probe.bob.y"]   # csv: the columns compared (default: probes' x, y)
 //   end_time = 2.0                     # default: the scene's
 //   compare_interval = 0.01            # simulated seconds between error samples
 //   repeats = 3                        # wall time is the median over repeats
@@ -49,7 +51,11 @@ struct StudyDef {
   std::string scene_path;            // resolved against the study file's folder
   std::vector<std::string> scene_overrides;  // "key=value" applied to the scene
   enum class Mode { kTime, kRefine } mode = Mode::kTime;
-  std::string reference = "converged";  // pendulum_exact | slider_crank_exact | converged
+  std::string reference = "converged";  // pendulum_exact | slider_crank_exact | converged | csv
+  std::string reference_file;           // csv: resolved against the study file's folder
+  std::string reference_time_column = "t";  // csv: the time column (series.csv's name by default)
+  std::vector<std::string> columns;     // csv: compared columns; empty: x and y of the compared probes
+  SourceLocation reference_file_where, columns_where;  // where the study named them
   std::string reference_integrator = "rk4";
   double reference_dt = 0.0;            // converged reference; default: smallest dt / 8
   std::string reference_correction;     // default: the scene's

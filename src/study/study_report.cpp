@@ -1,5 +1,6 @@
 #include "study/study_report.h"
 
+#include "study/energy_trace.h"
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -245,6 +246,12 @@ StudyOutputs write_study_outputs(const StudyResult& result, const std::string& o
   const fs::path script = dir / "study.gp";
   const fs::path png = dir / "study.png";
   write_text(script, study_gnuplot_script(result, "study.csv", "study.png"));
+  // time studies: the energy error against time beside the error against run time
+  const bool energy = !is_refine(result) && !result.times.empty();
+  if (energy) {
+    write_text(dir / "energy.csv", energy_trace_csv(result));
+    write_text(dir / "energy.gp", energy_trace_gnuplot_script(result, "energy.csv", "energy.png"));
+  }
   if (!gnuplot_available()) {
     outputs.plot_message = "no plot made: gnuplot was not found (install gnuplot-nox, then run "
                            "`gnuplot study.gp` in " + dir.string() + ")";
@@ -259,6 +266,13 @@ StudyOutputs write_study_outputs(const StudyResult& result, const std::string& o
   std::error_code ignored;
   fs::remove(dir / "gnuplot.log", ignored);
   outputs.plot_path = png.string();
+  if (energy) {
+    const std::string energy_command = "cd '" + dir.string() + "' && gnuplot energy.gp 2>gnuplot.log";
+    if (std::system(energy_command.c_str()) == 0 && fs::exists(dir / "energy.png")) {
+      fs::remove(dir / "gnuplot.log", ignored);
+      outputs.energy_plot_path = (dir / "energy.png").string();
+    }
+  }
   return outputs;
 }
 

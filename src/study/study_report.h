@@ -1,6 +1,7 @@
 // Writes what a study measured: study.csv (one row per run), study.md (the same as a Markdown
 // table with the observed orders), and study.png, a log-log plot of error against run time drawn
-// by gnuplot when it is installed (study.gp, the script, is always written beside it).
+// by gnuplot when it is installed (study.gp, the script, is always written beside it); time
+// studies also get energy.csv / energy.gp / energy.png (energy_trace.h).
 #pragma once
 
 #include <string>
@@ -25,6 +26,7 @@ std::string study_gnuplot_script(const StudyResult& result, const std::string& c
 struct StudyOutputs {
   std::string csv_path, markdown_path, plot_path;  // plot_path empty when no plot was made
   std::string plot_message;                        // why there is no plot, when there is none
+  std::string energy_plot_path;  // time studies: energy.png (energy error against time), when drawn
 };
 
 // Writes the three files into `out_dir` (created when missing). Throws std::runtime_error when a

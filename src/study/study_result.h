@@ -27,6 +27,9 @@ struct StudyRow {
   double wall_time = 0.0;         // median over repeats of the solver's seconds (output excluded)
   long steps = 0;
   std::string status = "ok";      // "ok" or "failed: <what>"
+  // |energy balance| at each comparison time (StudyResult::times), relative to the run's largest
+  // kinetic energy: how the energy error evolves, drift or bounded (energy.csv, energy.png)
+  std::vector<double> energy_trace;
   // Refine studies: the grid, the measured quantity and its known answer (error_max_rel is
   // |measured - expected| / expected there).
   double grid_spacing = 0.0, horizon_ratio = 0.0;
@@ -55,6 +58,7 @@ struct StudyResult {
   double excursion = 0.0;         // the scale of relative errors [m]
   bool has_fracture = false;      // crack-tip and broken-bond columns are meaningful
   std::vector<StudyRow> rows;
+  std::vector<double> times;      // the comparison times (time studies)
   std::vector<ObservedOrder> orders;
   std::string quantity;           // refine studies: what was measured (wave_speed, ...)
   std::string quantity_unit;

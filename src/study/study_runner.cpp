@@ -1,6 +1,7 @@
 #include "study/study_runner.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -11,6 +12,7 @@
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"
 #include "solve/snapshot.h"
+#include "study/reference_csv.h"
 #include "study/reference_solution.h"
 
 namespace periflex {
@@ -23,37 +25,83 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Which probes are compared: their index in the scene and their x, y columns in Sample::probe_values.
+// Which run columns are compared: the selected probes' x and y, or the columns a csv study
+// names. Distances are taken per group: an x column with its y column is one point (the
+// distance between points), any other column alone (the absolute difference).
 struct ProbeSelection {
-  std::vector<int> scene_index;
-  std::vector<int> column_x, column_y;
+  std::vector<int> scene_index;        // probes (exact references)
+  std::vector<std::string> names;      // compared column names
+  std::vector<int> columns;            // their index in Sample::probe_values
+  std::vector<std::array<int, 2>> groups;  // positions in `columns`; second -1 for a single column
 };
+
+// Pairs "<p>.x" with "<p>.y" when both are compared.
+std::vector<std::array<int, 2>> column_groups(const std::vector<std::string>& names) {
+  std::vector<std::array<int, 2>> groups;
+  std::vector<char> used(names.size(), 0);
+  const auto ends_with = [](const std::string& s, const std::string& tail) {
+    return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  for (size_t k = 0; k < names.size(); ++k) {
+    if (used[k]) continue;
+    used[k] = 1;
+    int partner = -1;
+    if (ends_with(names[k], ".x")) {
+      const std::string y = names[k].substr(0, names[k].size() - 2) + ".y";
+      for (size_t j = 0; j < names.size(); ++j)
+        if (!used[j] && names[j] == y) partner = static_cast<int>(j);
+    }
+    if (partner >= 0) used[partner] = 1;
+    groups.push_back({static_cast<int>(k), partner});
+  }
+  return groups;
+}
 
 ProbeSelection select_probes(const StudyDef& study, const SceneDef& scene,
                              const std::vector<std::string>& columns) {
+  ProbeSelection sel;
+  const auto column_index = [&](const std::string& wanted) {
+    for (size_t c = 0; c < columns.size(); ++c)
+      if (columns[c] == wanted) return static_cast<int>(c);
+    return -1;
+  };
+  if (!study.columns.empty()) {
+    // the columns a csv study names, as series.csv would name them
+    for (const std::string& name : study.columns) {
+      const int c = column_index(name);
+      if (c < 0) {
+        std::string available;
+        for (const std::string& a : columns) available += (available.empty() ? "" : ", ") + a;
+        SourceLocation where = study.columns_where.file.empty() ? study_location(study, "study.columns")
+                                                                : study.columns_where;
+        throw InputError(where, "the scene has no column '" + name + "' to compare (its probe columns: " +
+                                    (available.empty() ? "none" : available) + ")");
+      }
+      sel.names.push_back(name);
+      sel.columns.push_back(c);
+    }
+    sel.groups = column_groups(sel.names);
+    return sel;
+  }
   std::vector<std::string> names = study.probes;
   if (names.empty())
     for (const ProbeDef& p : scene.probes) names.push_back(p.name);
   if (names.empty())
     throw InputError(study_location(study, "study.probes"), "the scene declares no [[probe]] to compare");
-  ProbeSelection sel;
   for (const std::string& name : names) {
     int index = -1;
     for (size_t k = 0; k < scene.probes.size(); ++k)
       if (scene.probes[k].name == name) index = static_cast<int>(k);
-    const auto column = [&](const std::string& suffix) {
-      const std::string wanted = "probe." + name + "." + suffix;
-      for (size_t c = 0; c < columns.size(); ++c)
-        if (columns[c] == wanted) return static_cast<int>(c);
-      return -1;
-    };
-    const int cx = column("x"), cy = column("y");
+    const int cx = column_index("probe." + name + ".x"), cy = column_index("probe." + name + ".y");
     if (index < 0 || cx < 0 || cy < 0)
       throw InputError(study_location(study, "study.probes"), "the scene has no probe '" + name + "'");
     sel.scene_index.push_back(index);
-    sel.column_x.push_back(cx);
-    sel.column_y.push_back(cy);
+    sel.names.push_back("probe." + name + ".x");
+    sel.names.push_back("probe." + name + ".y");
+    sel.columns.push_back(cx);
+    sel.columns.push_back(cy);
   }
+  sel.groups = column_groups(sel.names);
   return sel;
 }
 
@@ -100,6 +148,7 @@ struct Track {
   std::vector<std::vector<double>> probes;  // x0, y0, x1, y1, ... of the selected probes
   std::vector<double> crack;
   std::vector<long> broken;
+  std::vector<double> balance;              // energy balance at each comparison time [J]
   double violation = 0.0, energy_error = 0.0, max_kinetic = 0.0;
   long steps = 0;
   double wall = 0.0;
@@ -131,13 +180,11 @@ Track run_once(const SceneDef& scene, const StudyDef& study, const std::vector<d
     const Sample s = sim.sample();
     track.times.push_back(sim.time());
     std::vector<double> p;
-    for (size_t k = 0; k < sel.column_x.size(); ++k) {
-      p.push_back(s.probe_values[sel.column_x[k]]);
-      p.push_back(s.probe_values[sel.column_y[k]]);
-    }
+    for (int c : sel.columns) p.push_back(s.probe_values[c]);
     track.probes.push_back(std::move(p));
     track.violation = std::max(track.violation, s.violation_position);
     track.energy_error = std::max(track.energy_error, std::abs(s.energies.balance));
+    track.balance.push_back(s.energies.balance);
     track.max_kinetic = std::max(track.max_kinetic, s.energies.kinetic);
     track.broken.push_back(s.broken_bonds);
     if (fracture) {
@@ -164,11 +211,13 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// Largest distance between matching probes of two rows of probe coordinates.
-double probe_distance(const std::vector<double>& a, const std::vector<double>& b) {
+// Largest distance between matching groups of two rows of compared values (a point's x and y
+// together, any other column alone).
+double probe_distance(const std::vector<double>& a, const std::vector<double>& b,
+                      const std::vector<std::array<int, 2>>& groups) {
   double worst = 0.0;
-  for (size_t k = 0; k + 1 < a.size(); k += 2)
-    worst = std::max(worst, std::hypot(a[k] - b[k], a[k + 1] - b[k + 1]));
+  for (const auto& [i, j] : groups)
+    worst = std::max(worst, j < 0 ? std::abs(a[i] - b[i]) : std::hypot(a[i] - b[i], a[j] - b[j]));
   return worst;
 }
 
@@ -214,6 +263,16 @@ class ExactReference final : public Reference {
  private:
   std::unique_ptr<ReferenceSolution> solution_;
   std::vector<int> scene_index_;
+};
+
+// A reference trajectory read from a file, interpolated to the times the runs stood at.
+class CsvReference final : public Reference {
+ public:
+  explicit CsvReference(ReferenceCsv csv) : csv_(std::move(csv)) {}
+  std::vector<double> probes(size_t, double t) const override { return csv_.values(t); }
+
+ private:
+  ReferenceCsv csv_;
 };
 
 class ConvergedReference final : public Reference {
@@ -265,6 +324,7 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
                      "compare_interval " + format_g(interval) + " must divide the end time " + format_g(end_time));
   std::vector<double> times(count + 1);
   for (long k = 0; k <= count; ++k) times[k] = k * interval;
+  result.times = times;
 
   // every fixed-step run must land on the comparison times
   double smallest_dt = std::numeric_limits<double>::infinity();
@@ -280,17 +340,36 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
 
   // the reference
   std::unique_ptr<Reference> reference;
+  std::vector<std::array<int, 2>> groups;  // how compared columns make distances
   {
     Simulation probe_sim(base);
     const ProbeSelection sel = select_probes(study, base, probe_sim.probe_columns());
+    groups = sel.groups;
     std::vector<double> start_probes;
-    if (study.reference != "converged") {
+    if (study.reference == "csv") {
+      // a user's trajectory: its columns named as the run's, covering the whole study
+      const SourceLocation where = study.reference_file_where.file.empty()
+                                       ? study_location(study, "study.reference_file")
+                                       : study.reference_file_where;
+      ReferenceCsv csv = load_reference_csv(study.reference_file, study.reference_time_column, sel.names, where);
+      csv.require_span(0.0, end_time, where);
+      result.reference_description = "trajectory from " + study.reference_file + " (" +
+                                     std::to_string(csv.samples()) + " samples, t = " + format_g(csv.first_time()) +
+                                     " to " + format_g(csv.last_time()) +
+                                     " s; degree-5 Lagrange interpolation between them)";
+      reference = std::make_unique<CsvReference>(std::move(csv));
+      start_probes = reference->probes(0, 0.0);
+      for (size_t k = 0; k < times.size(); ++k)
+        result.excursion =
+            std::max(result.excursion, probe_distance(reference->probes(k, times[k]), start_probes, groups));
+    } else if (study.reference != "converged") {
       auto solution = make_reference_solution(study.reference, base);
       result.reference_description = solution->describe();
       reference = std::make_unique<ExactReference>(std::move(solution), sel.scene_index);
       start_probes = reference->probes(0, 0.0);
       for (size_t k = 0; k < times.size(); ++k)
-        result.excursion = std::max(result.excursion, probe_distance(reference->probes(k, times[k]), start_probes));
+        result.excursion =
+            std::max(result.excursion, probe_distance(reference->probes(k, times[k]), start_probes, groups));
     } else {
       SceneDef ref_scene = base;
       ref_scene.solver.integrator = study.reference_integrator;
@@ -308,14 +387,14 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
       const Track coarse = run_once(ref_scene, study, times, 2e-6 * ref_dt, true);
       // the fine run's own error, estimated by the change from twice its step
       for (size_t k = 0; k < times.size(); ++k)
-        result.reference_error = std::max(result.reference_error, probe_distance(fine.probes[k], coarse.probes[k]));
+        result.reference_error = std::max(result.reference_error, probe_distance(fine.probes[k], coarse.probes[k], groups));
       result.reference_wall_time = fine.wall;
       result.reference_description = "converged run: " + study.reference_integrator + " at dt = " +
                                      format_g(ref_dt) + " (" + correction_name(ref_scene.solver.correction.method) +
                                      "); its error, estimated against dt = " + format_g(2.0 * ref_dt) + ": " +
                                      format_g(result.reference_error) + " m";
       for (size_t k = 0; k < times.size(); ++k)
-        result.excursion = std::max(result.excursion, probe_distance(fine.probes[k], fine.probes[0]));
+        result.excursion = std::max(result.excursion, probe_distance(fine.probes[k], fine.probes[0], groups));
       reference = std::make_unique<ConvergedReference>(std::move(fine));
     }
   }
@@ -356,10 +435,12 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
             row.violation = track.violation;
             row.energy_error = track.energy_error;
             row.energy_error_rel = track.max_kinetic > 0.0 ? track.energy_error / track.max_kinetic : 0.0;
+            for (double b : track.balance)
+              row.energy_trace.push_back(track.max_kinetic > 0.0 ? std::abs(b) / track.max_kinetic : std::abs(b));
             double sum_sq = 0.0;
             const long end_broken = reference->broken(times.size() - 1);
             for (size_t k = 0; k < track.times.size(); ++k) {
-              const double e = probe_distance(track.probes[k], reference->probes(k, track.times[k]));
+              const double e = probe_distance(track.probes[k], reference->probes(k, track.times[k]), groups);
               row.error_max = std::max(row.error_max, e);
               sum_sq += e * e;
               if (result.has_fracture) {

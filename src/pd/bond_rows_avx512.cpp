@@ -81,7 +81,7 @@ PERIFLEX_AVX512 inline __m512d track_max(__m512d top, __m512d r2, __m512d inv_le
 
 template <bool kTrack, bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 void elastic_avx512(int begin, int end, const Rows& r, const double* __restrict pos,
-                                         double* __restrict force, double* __restrict most) {
+                                         double* __restrict force, double* __restrict most, const RowCut* cut) {
   const __m512d one = _mm512_set1_pd(1.0);
   __m512d table_lo, table_hi;
   table_registers(r, table_lo, table_hi);
@@ -101,16 +101,27 @@ PERIFLEX_AVX512 void elastic_avx512(int begin, int end, const Rows& r, const dou
       ay = _mm512_fmadd_pd(f, dy, ay);
       if constexpr (kTrack) top = track_max(top, r2, inv_len, l);
     }
+    if constexpr (kTrack) {
+      const double largest = _mm512_reduce_max_pd(top);
+      if (most) most[i] = largest;
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (cut && largest > cut->s0 - kCutSlack) {
+        double fx = 0.0, fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, nullptr, 0.0, fx, fy);
+        force[2 * i] += fx;
+        force[2 * i + 1] += fy;
+        continue;
+      }
+    }
     force[2 * i] += _mm512_reduce_add_pd(ax);
     force[2 * i + 1] += _mm512_reduce_add_pd(ay);
-    if constexpr (kTrack) most[i] = _mm512_reduce_max_pd(top);
   }
 }
 
 template <bool kTrack, bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 void damped_avx512(int begin, int end, const Rows& r, const double* __restrict pos,
                                         const double* __restrict vel, double eta_over_e, double* __restrict force,
-                                        double* __restrict most) {
+                                        double* __restrict most, const RowCut* cut) {
   const __m512d one = _mm512_set1_pd(1.0), eta = _mm512_set1_pd(eta_over_e);
   __m512d table_lo, table_hi;
   table_registers(r, table_lo, table_hi);
@@ -136,9 +147,20 @@ PERIFLEX_AVX512 void damped_avx512(int begin, int end, const Rows& r, const doub
       ay = _mm512_fmadd_pd(f, dy, ay);
       if constexpr (kTrack) top = track_max(top, r2, inv_len, l);
     }
+    if constexpr (kTrack) {
+      const double largest = _mm512_reduce_max_pd(top);
+      if (most) most[i] = largest;
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (cut && largest > cut->s0 - kCutSlack) {
+        double fx = 0.0, fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, vel, eta_over_e, fx, fy);
+        force[2 * i] += fx;
+        force[2 * i + 1] += fy;
+        continue;
+      }
+    }
     force[2 * i] += _mm512_reduce_add_pd(ax);
     force[2 * i + 1] += _mm512_reduce_add_pd(ay);
-    if constexpr (kTrack) most[i] = _mm512_reduce_max_pd(top);
   }
 }
 
@@ -186,16 +208,17 @@ void with_avx512_options(const Rows& r, bool track, Fn&& fn) {
 
 }  // namespace
 
-void elastic_rows_avx512(int begin, int end, const Rows& r, const double* pos, double* force, double* most) {
-  with_avx512_options(r, most != nullptr, [&](auto track, auto small, auto offsets) {
-    elastic_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, force, most);
+void elastic_rows_avx512(int begin, int end, const Rows& r, const double* pos, double* force, double* most,
+                         const RowCut* cut) {
+  with_avx512_options(r, most || cut, [&](auto track, auto small, auto offsets) {
+    elastic_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, force, most, cut);
   });
 }
 
 void damped_rows_avx512(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
-                        double* force, double* most) {
-  with_avx512_options(r, most != nullptr, [&](auto track, auto small, auto offsets) {
-    damped_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, vel, eta_over_e, force, most);
+                        double* force, double* most, const RowCut* cut) {
+  with_avx512_options(r, most || cut, [&](auto track, auto small, auto offsets) {
+    damped_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
   });
 }
 

@@ -305,48 +305,6 @@ TEST(PdNotch, DamageCountsNotchBondsOnlyWhenAsked) {
   }
 }
 
-// A bond past s0 breaks in the force evaluation that first sees it and contributes no force
-// there: the forces of that evaluation equal those of a second one at the same positions, where
-// the bond is already gone. (Breaking after the step, the first evaluation still pulled with it.)
-// The same on any thread count, broken bonds included.
-TEST(PdFractureOrder, BondPastCriticalStretchGivesNoForceInTheEvaluationThatBreaksIt) {
-  FlexBodyDef def = glass_plate(0.05, 0.03, 5e-4);
-  std::vector<Eigen::VectorXd> first_forces;
-  std::vector<long> broken_counts;
-  const int saved = omp_get_max_threads();
-  for (int threads : {1, 2}) {
-    omp_set_num_threads(threads);
-    auto body = PdBody::build(def, 0);
-    // stretched 1.5 s0 across a band around x = 0, elastic elsewhere
-    Eigen::VectorXd q = affine_positions(*body, Eigen::Matrix2d::Zero());
-    const std::vector<double>& x = body->reference_positions();
-    const double s0 = body->critical_stretch();
-    for (int i = 0; i < body->particle_count(); ++i) q[2 * i] += x[2 * i] > 0.0 ? 1.5 * s0 * 2e-3 : 0.0;
-    const Eigen::VectorXd qd = Eigen::VectorXd::Zero(q.size());
-    Eigen::VectorXd first = Eigen::VectorXd::Zero(q.size()), second = Eigen::VectorXd::Zero(q.size());
-    body->add_forces(q, qd, 0.0, first);
-    const FractureUpdate update = body->update_fracture(q);
-    EXPECT_GT(update.bonds_broken, 0);
-    EXPECT_FALSE(update.forces_stale) << "the bonds broke in the force evaluation, not after it";
-    body->add_forces(q, qd, 0.0, second);
-    EXPECT_EQ(body->update_fracture(q).bonds_broken, 0);
-    // what the bonds past s0 pulled with, from a body that does not break them in the evaluation
-    auto unbroken = PdBody::build(def, 0);
-    unbroken->set_break_timing(PdBody::BreakTiming::kAfterStep);
-    Eigen::VectorXd all = Eigen::VectorXd::Zero(q.size());
-    unbroken->add_forces(q, qd, 0.0, all);
-    const double scale = all.cwiseAbs().maxCoeff();
-    EXPECT_GT((first - all).cwiseAbs().maxCoeff(), 0.1 * scale);
-    // the bonds taken out again after the loop added them: round-off of the forces they carried
-    EXPECT_LT((first - second).cwiseAbs().maxCoeff(), 1e-12 * scale);
-    first_forces.push_back(first);
-    broken_counts.push_back(update.bonds_broken);
-  }
-  omp_set_num_threads(saved);
-  EXPECT_EQ(first_forces[0], first_forces[1]);
-  EXPECT_EQ(broken_counts[0], broken_counts[1]);
-}
-
 TEST(PdDeterminism, ForcesAreBitIdenticalAcrossThreadCounts) {
   // each particle gathers its own bonds in a fixed order, so the thread count cannot change a bit;
   // the energy is summed in fixed ranges added in order: the same bits too

@@ -280,8 +280,16 @@ long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel,
 double bond_strain_energy(const BondStore& bonds, const double* pos) {
   // each pair is visited twice: a quarter of k |xi| s^2 per visit; rows summed in fixed ranges
   // and the ranges in order, so the energy has the same bits on any thread count
+  const Rows r = rows_of(bonds);
+  const Isa which = isa();
   return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
+#ifdef PERIFLEX_HAVE_VECTOR_KERNELS
+    if (which == Isa::kAvx512 && strain_energy_avx512(static_cast<int>(begin), static_cast<int>(end), r, pos, sum))
+      return sum;
+#else
+    (void)which;
+#endif
     for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
       double local = 0.0;
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {

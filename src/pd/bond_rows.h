@@ -53,8 +53,8 @@ void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, 
 
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
 // Rows [begin, end): forces added to force; with most non-null, each row's largest stretch over
-// its intact bonds (-1 without any) written to most[i]; with cut non-null, rows near or past s0
-// summed by cut_row_forces. Same formulas as the portable loops in bond_kernel.cpp, to round-off.
+// its intact bonds (-1 without any) written to most[i]; with cut non-null (and most null: a
+// breaking evaluation leaves no maxima), rows near or past s0 summed by cut_row_forces. Same formulas as the portable loops in bond_kernel.cpp, to round-off.
 void elastic_rows_avx2(int begin, int end, const Rows& r, const double* pos, double* force, double* most,
                        const RowCut* cut);
 void damped_rows_avx2(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
@@ -63,6 +63,9 @@ void elastic_rows_avx512(int begin, int end, const Rows& r, const double* pos, d
                          const RowCut* cut);
 void damped_rows_avx512(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
                         double* force, double* most, const RowCut* cut);
+// Strain energy of rows [begin, end) into sum (a quarter of k |xi| s^2 per stored direction, row
+// by row in order); false (sum untouched) when the class table does not fit two registers.
+bool strain_energy_avx512(int begin, int end, const Rows& r, const double* pos, double& sum);
 // Each row's largest stretch over its intact bonds (-1 without any).
 void row_max_stretch_avx512(int begin, int end, const Rows& r, const double* pos, double* out);
 #endif

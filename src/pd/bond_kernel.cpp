@@ -250,8 +250,11 @@ long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel,
   // in row order on one thread: the same sum on any thread count (only rows at a crack tip)
   long directed = 0;
   double energy = 0.0;
-  for (int i = 0; i < bonds.particle_count(); ++i) {
-    if (!row_broke[i]) continue;
+  const int n = bonds.particle_count();
+  // the flagged rows are few: jump between them (a byte search) rather than test every row
+  for (int i = 0; i < n; ++i) {
+    i = static_cast<int>(std::find(row_broke + i, row_broke + n, uint8_t{1}) - row_broke);
+    if (i == n) break;
     row_broke[i] = 0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
       if (bonds.broken[b] != 2) continue;

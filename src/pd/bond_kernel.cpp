@@ -210,7 +210,7 @@ void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, 
     const double l0 = r.l0[r.cls[b]], k = r.k[b];
     // the exact stretch, as stretch() below: the same bits in both copies of the bond
     if (k > 0.0 && !fixed && !(cut.no_fail && cut.no_fail[j]) && len * l0 - 1.0 > cut.s0) {
-      if (cut.broken) cut.broken[b] = 2;
+      cut.broken[b] = 2;
       left_out = true;
       continue;
     }
@@ -223,7 +223,7 @@ void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, 
     fx += f * dx;
     fy += f * dy;
   }
-  if (left_out && cut.row_broke) cut.row_broke[i] = 1;
+  if (left_out) cut.row_broke[i] = 1;
 }
 
 void set_vector_kernels(VectorKernels widest) { widest_allowed = widest; }
@@ -240,8 +240,7 @@ void add_damped_bond_forces(const BondStore& bonds, const double* pos, const dou
 
 void add_bond_forces_breaking(BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
                               const BreakingEvaluation& breaking, double* force, double* pos_copy) {
-  const RowCut cut{breaking.s0, breaking.no_fail, breaking.commit ? bonds.broken.data() : nullptr,
-                   breaking.commit ? breaking.row_broke : nullptr};
+  const RowCut cut{breaking.s0, breaking.no_fail, bonds.broken.data(), breaking.row_broke};
   force_loop(bonds, pos, vel && eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force, nullptr, pos_copy, &cut);
 }
 

@@ -25,11 +25,9 @@ void add_damped_bond_forces(const BondStore& bonds, const double* pos, const dou
 struct BreakingEvaluation {
   double s0 = 0.0;                 // critical stretch
   const uint8_t* no_fail = nullptr;  // 1: bonds at this particle never break; may be null
-  // true: positions the solver accepts; each bond left out breaks for good (both copies marked
-  // for settle_broken_bonds, their rows flagged in row_broke). false: a trial stage; the bonds
-  // are only left out of this evaluation.
-  bool commit = true;
-  uint8_t* row_broke = nullptr;    // one flag per particle, all 0 on entry (commit only)
+  // one flag per particle, all 0 on entry: set for a row whose bonds broke (both copies of each
+  // are marked broken = 2 for settle_broken_bonds)
+  uint8_t* row_broke = nullptr;
 };
 
 // As add_damped_bond_forces (vel non-null, eta_over_e > 0) or add_bond_forces, except that every
@@ -39,7 +37,7 @@ struct BreakingEvaluation {
 void add_bond_forces_breaking(BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
                               const BreakingEvaluation& breaking, double* force, double* pos_copy = nullptr);
 
-// Completes the breaks a committing evaluation at pos (and vel) marked: k = 0, broken = 1, flags
+// Completes the breaks an evaluation at pos (and vel) marked: k = 0, broken = 1, flags
 // cleared. Returns the pairs broken; energy_released gets the strain energy they held at pos less,
 // when half_kick > 0, the work their forces would have done over a half-kick of that length
 // after the evaluation (velocity Verlet's, which the bonds no longer take part in).

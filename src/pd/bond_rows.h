@@ -38,8 +38,8 @@ inline Rows rows_of(const BondStore& b) {
 struct RowCut {
   double s0;
   const uint8_t* no_fail;  // 1: bonds at this particle never break; may be null
-  uint8_t* broken;         // non-null: a bond left out is marked 2 (broken, not yet settled)
-  uint8_t* row_broke;      // non-null: set to 1 for a row that left a bond out
+  uint8_t* broken;         // a bond left out is marked 2 (broken, not yet settled)
+  uint8_t* row_broke;      // set to 1 for a row that left a bond out
 };
 
 // The row maxima of the vector loops may differ from the exact stretch by a few units in the

@@ -398,9 +398,9 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
   double* force = g.data() + m.offset;
   const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
 
-  // with fracture on the force loop also sees the stretch: in an evaluation that breaks bonds or
-  // leaves them out, the bonds past s0 take no part in its forces; otherwise it leaves the row
-  // maxima for update_fracture. Either way it copies the positions it saw, chunk by chunk.
+  // with fracture on the force loop also sees the stretch: an evaluation that breaks bonds leaves
+  // out those past s0; one that holds every bond leaves the row maxima for update_fracture.
+  // Either way it copies the positions it saw, chunk by chunk.
   const double* pos = m.pos(q);
   const double* vel = qd.data() + m.offset;
   if (m.tracks_stretch()) {
@@ -414,22 +414,18 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
       else
         add_bond_forces(m.bonds, pos, force, m.stretch_cache_most.data(), seen);
     } else {
-      const bool commit = m.break_timing == BreakTiming::kInEvaluation;
       m.row_broke.resize(m.n(), 0);
       BreakingEvaluation breaking;
       breaking.s0 = m.s0;
       breaking.no_fail = m.def.no_fail_regions.empty() ? nullptr : m.no_fail.data();
-      breaking.commit = commit;
       breaking.row_broke = m.row_broke.data();
       add_bond_forces_breaking(m.bonds, pos, vel, eta_over_e, breaking, force, seen);
-      if (commit) {
-        double energy = 0.0;
-        const double half_kick = t == m.step_end ? m.half_kick : 0.0;
-        const long broken = settle_broken_bonds(m.bonds, pos, vel, half_kick, m.row_broke.data(), energy);
-        m.pending_broken += broken;
-        m.pending_energy += energy;
-        m.broken_pairs += broken;
-      }
+      double energy = 0.0;
+      const double half_kick = t == m.step_end ? m.half_kick : 0.0;
+      const long broken = settle_broken_bonds(m.bonds, pos, vel, half_kick, m.row_broke.data(), energy);
+      m.pending_broken += broken;
+      m.pending_energy += energy;
+      m.broken_pairs += broken;
     }
   } else if (eta_over_e > 0.0) {
     add_damped_bond_forces(m.bonds, pos, vel, eta_over_e, force);

@@ -71,8 +71,7 @@ class PdBody : public ForceElement {
   enum class BreakTiming {
     kInEvaluation,  // in the force evaluation that first sees it, which it takes no part in (the
                     // default; integrators whose every evaluation is at accepted positions)
-    kAfterStepLeftOut,  // evaluations (trial stages) leave it out; update_fracture breaks it
-    kAfterStep,     // evaluations hold every intact bond; update_fracture breaks it
+    kAfterStep,     // evaluations (trial stages) hold every intact bond; update_fracture breaks it
   };
   void set_break_timing(BreakTiming timing);
   // Evaluations at time t_end close a step and are followed by a velocity half-kick of length

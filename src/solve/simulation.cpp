@@ -96,16 +96,15 @@ struct Simulation::Impl {
   }
 
   // When bonds past s0 break (docs/peridynamics.md §3): in the force evaluation that first sees
-  // them with the integrators that evaluate forces only at accepted positions; the explicit
-  // multi-stage ones leave them out of their trial stages and break them at the accepted
-  // positions; HHT's Newton tangent (finite differences of the forces) needs every intact bond
-  // in its evaluations, so its bonds break after the accepted step.
+  // them with the integrators that evaluate forces only at accepted positions; the multi-stage
+  // ones hold every intact bond in their trial stages (a stage that dropped a bond, which the
+  // step's weights then count only in part, would spoil the energy balance) and break them at
+  // the accepted positions after the step.
   void choose_fracture_order() {
     const std::string& name = integrator->name();
     using Timing = PdBody::BreakTiming;
-    const Timing timing = name == "verlet" || name == "symplectic_euler" ? Timing::kInEvaluation
-                          : name == "hht"                                ? Timing::kAfterStep
-                                                                         : Timing::kAfterStepLeftOut;
+    const Timing timing =
+        name == "verlet" || name == "symplectic_euler" ? Timing::kInEvaluation : Timing::kAfterStep;
     for (auto& flex : model->flex_bodies) flex->set_break_timing(timing);
   }
 

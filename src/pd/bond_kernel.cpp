@@ -18,11 +18,6 @@ namespace periflex {
 
 namespace {
 
-// The row maxima of the vector force loops may differ from the exact stretch by a few units in
-// the last place (their 1/|y| is a refined estimate); rows within this much of s0 are walked
-// exactly, so both copies of a bond always see the exact stretch when one of them breaks.
-constexpr double kRowMaxSlack = 1e-12;
-
 // Below this many particles a loop runs on one thread: fork and join would cost more than the work.
 constexpr int kParallelMin = 4096;
 
@@ -52,7 +47,7 @@ void for_blocks(int n, Fn&& fn) {
 // (at most 0 when none) goes to most[i] as a by-product.
 template <bool kTrack>
 void elastic_rows(int begin, int end, const Rows& r, const double* __restrict pos, double* __restrict force,
-                  double* __restrict most) {
+                  double* __restrict most, const RowCut* cut) {
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     double fx = 0.0, fy = 0.0, top = -1.0;
@@ -67,16 +62,23 @@ void elastic_rows(int begin, int end, const Rows& r, const double* __restrict po
       fy += f * dy;
       if constexpr (kTrack) top = std::max(top, k > 0.0 ? len * l0 - 1.0 : -1.0);
     }
+    if constexpr (kTrack) {
+      if (most) most[i] = top;
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (cut && top > cut->s0 - kCutSlack) {
+        fx = fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, nullptr, 0.0, fx, fy);
+      }
+    }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
-    if constexpr (kTrack) most[i] = top;
   }
 }
 
 // as elastic_rows, plus k eta/E ds/dt with ds/dt = e . (v_j - v_i) / |xi|, along e
 template <bool kTrack>
 void damped_rows(int begin, int end, const Rows& r, const double* __restrict pos, const double* __restrict vel,
-                 double eta_over_e, double* __restrict force, double* __restrict most) {
+                 double eta_over_e, double* __restrict force, double* __restrict most, const RowCut* cut) {
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
     const double vxi = vel[2 * i], vyi = vel[2 * i + 1];
@@ -95,9 +97,16 @@ void damped_rows(int begin, int end, const Rows& r, const double* __restrict pos
       fy += f * dy;
       if constexpr (kTrack) top = std::max(top, k > 0.0 ? len * l0 - 1.0 : -1.0);
     }
+    if constexpr (kTrack) {
+      if (most) most[i] = top;
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (cut && top > cut->s0 - kCutSlack) {
+        fx = fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, vel, eta_over_e, fx, fy);
+      }
+    }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
-    if constexpr (kTrack) most[i] = top;
   }
 }
 
@@ -156,45 +165,135 @@ void row_maxima(const BondStore& bonds, const double* pos, double* out) {
   });
 }
 
+// Rows [begin, end) of the elastic (vel null) or damped force loop the CPU runs best.
+void force_rows(int begin, int end, Isa which, const Rows& r, const double* pos, const double* vel,
+                double eta_over_e, double* force, double* row_max, const RowCut* cut) {
+#ifdef PERIFLEX_HAVE_VECTOR_KERNELS
+  if (vel) {
+    if (which == Isa::kAvx512) return damped_rows_avx512(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
+    if (which == Isa::kAvx2) return damped_rows_avx2(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
+  } else {
+    if (which == Isa::kAvx512) return elastic_rows_avx512(begin, end, r, pos, force, row_max, cut);
+    if (which == Isa::kAvx2) return elastic_rows_avx2(begin, end, r, pos, force, row_max, cut);
+  }
+#else
+  (void)which;
+#endif
+  const bool track = row_max || cut;
+  if (vel) {
+    if (track) return damped_rows<true>(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
+    return damped_rows<false>(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
+  }
+  if (track) return elastic_rows<true>(begin, end, r, pos, force, row_max, cut);
+  elastic_rows<false>(begin, end, r, pos, force, row_max, cut);
+}
+
+// The whole force loop, chunk by chunk on the threads; pos_copy receives pos chunk by chunk.
+void force_loop(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e, double* force,
+                double* row_max, double* pos_copy, const RowCut* cut) {
+  const Rows r = rows_of(bonds);
+  const Isa which = isa();
+  for_blocks(bonds.particle_count(), [&](int begin, int end) {
+    if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
+    force_rows(begin, end, which, r, pos, vel, eta_over_e, force, row_max, cut);
+  });
+}
+
 }  // namespace
+
+void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, const double* vel,
+                    double eta_over_e, double& fx, double& fy) {
+  const bool fixed = cut.no_fail && cut.no_fail[i];
+  bool left_out = false;
+  for (int64_t b = r.row[i]; b < r.row[i + 1]; ++b) {
+    const int32_t j = r.nbr[b];
+    const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
+    const double len = std::sqrt(dx * dx + dy * dy);
+    const double l0 = r.l0[r.cls[b]], k = r.k[b];
+    // the exact stretch, as stretch() below: the same bits in both copies of the bond
+    if (k > 0.0 && !fixed && !(cut.no_fail && cut.no_fail[j]) && len * l0 - 1.0 > cut.s0) {
+      cut.broken[b] = 2;
+      left_out = true;
+      continue;
+    }
+    const double inv_len = 1.0 / len;
+    double f = k * (l0 - inv_len);
+    if (vel) {
+      const double dvx = vel[2 * j] - vel[2 * i], dvy = vel[2 * j + 1] - vel[2 * i + 1];
+      f = k * ((l0 - inv_len) + eta_over_e * ((dx * dvx + dy * dvy) * inv_len * l0) * inv_len);
+    }
+    fx += f * dx;
+    fy += f * dy;
+  }
+  if (left_out) cut.row_broke[i] = 1;
+}
 
 void set_vector_kernels(VectorKernels widest) { widest_allowed = widest; }
 void set_vector_kernels_enabled(bool enabled) { set_vector_kernels(enabled ? Isa::kAvx512 : Isa::kPortable); }
 
 void add_bond_forces(const BondStore& bonds, const double* pos, double* force, double* row_max, double* pos_copy) {
-  const Rows r = rows_of(bonds);
-  const Isa which = isa();
-  for_blocks(bonds.particle_count(), [&](int begin, int end) {
-    if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
-#ifdef PERIFLEX_HAVE_VECTOR_KERNELS
-    if (which == Isa::kAvx512) return elastic_rows_avx512(begin, end, r, pos, force, row_max);
-    if (which == Isa::kAvx2) return elastic_rows_avx2(begin, end, r, pos, force, row_max);
-#endif
-    if (row_max) return elastic_rows<true>(begin, end, r, pos, force, row_max);
-    elastic_rows<false>(begin, end, r, pos, force, row_max);
-  });
+  force_loop(bonds, pos, nullptr, 0.0, force, row_max, pos_copy, nullptr);
 }
 
 void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
                             double* force, double* row_max, double* pos_copy) {
-  const Rows r = rows_of(bonds);
-  const Isa which = isa();
-  for_blocks(bonds.particle_count(), [&](int begin, int end) {
-    if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
-#ifdef PERIFLEX_HAVE_VECTOR_KERNELS
-    if (which == Isa::kAvx512) return damped_rows_avx512(begin, end, r, pos, vel, eta_over_e, force, row_max);
-    if (which == Isa::kAvx2) return damped_rows_avx2(begin, end, r, pos, vel, eta_over_e, force, row_max);
-#endif
-    if (row_max) return damped_rows<true>(begin, end, r, pos, vel, eta_over_e, force, row_max);
-    damped_rows<false>(begin, end, r, pos, vel, eta_over_e, force, row_max);
-  });
+  force_loop(bonds, pos, vel, eta_over_e, force, row_max, pos_copy, nullptr);
+}
+
+void add_bond_forces_breaking(BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
+                              const BreakingEvaluation& breaking, double* force, double* pos_copy) {
+  const RowCut cut{breaking.s0, breaking.no_fail, bonds.broken.data(), breaking.row_broke};
+  force_loop(bonds, pos, vel && eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force, nullptr, pos_copy, &cut);
+}
+
+long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel, double half_kick,
+                         uint8_t* row_broke, double& energy_released) {
+  // in row order on one thread: the same sum on any thread count (only rows at a crack tip)
+  long directed = 0;
+  double energy = 0.0;
+  const int n = bonds.particle_count();
+  // the flagged rows are few: jump between them (a byte search) rather than test every row
+  for (int i = 0; i < n; ++i) {
+    i = static_cast<int>(std::find(row_broke + i, row_broke + n, uint8_t{1}) - row_broke);
+    if (i == n) break;
+    row_broke[i] = 0;
+    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+      if (bonds.broken[b] != 2) continue;
+      const int32_t j = bonds.neighbor[b];
+      const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
+      const double len = std::sqrt(dx * dx + dy * dy), l0 = bonds.inv_length(b), k = bonds.stiffness[b];
+      const double s = len * l0 - 1.0;
+      // a quarter of k |xi| s^2 per copy: the strain energy where the evaluation saw the bond
+      double e = 0.25 * k * s * s / l0;
+      // less the work its force k s e would have done on the particles over the half-kick it
+      // no longer takes part in: -(h/2) k s e . (v_j - v_i) per pair, half per copy
+      if (half_kick > 0.0 && vel) {
+        const double dvx = vel[2 * j] - vel[2 * i], dvy = vel[2 * j + 1] - vel[2 * i + 1];
+        e -= 0.5 * half_kick * k * s * (dx * dvx + dy * dvy) / len;
+      }
+      energy += e;
+      bonds.broken[b] = 1;
+      bonds.stiffness[b] = 0.0f;
+      ++directed;
+    }
+  }
+  energy_released = energy;
+  return directed / 2;
 }
 
 double bond_strain_energy(const BondStore& bonds, const double* pos) {
   // each pair is visited twice: a quarter of k |xi| s^2 per visit; rows summed in fixed ranges
   // and the ranges in order, so the energy has the same bits on any thread count
+  const Rows r = rows_of(bonds);
+  const Isa which = isa();
   return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
+#ifdef PERIFLEX_HAVE_VECTOR_KERNELS
+    if (which == Isa::kAvx512 && strain_energy_avx512(static_cast<int>(begin), static_cast<int>(end), r, pos, sum))
+      return sum;
+#else
+    (void)which;
+#endif
     for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
       double local = 0.0;
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
@@ -243,7 +342,7 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
   }
   const double* most = row_max ? row_max : computed.data();
   for (int i = 0; i < n; ++i) {
-    if (most[i] <= s0 - kRowMaxSlack || (no_fail && no_fail[i])) continue;
+    if (most[i] <= s0 - kCutSlack || (no_fail && no_fail[i])) continue;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
       if (bonds.broken[b] || (no_fail && no_fail[bonds.neighbor[b]])) continue;
       const double s = stretch(bonds, pos, i, b);

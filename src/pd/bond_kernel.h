@@ -21,6 +21,29 @@ void add_bond_forces(const BondStore& bonds, const double* pos, double* force,
 void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
                             double* force, double* row_max = nullptr, double* pos_copy = nullptr);
 
+// A force evaluation that breaks bonds (add_bond_forces_breaking).
+struct BreakingEvaluation {
+  double s0 = 0.0;                 // critical stretch
+  const uint8_t* no_fail = nullptr;  // 1: bonds at this particle never break; may be null
+  // one flag per particle, all 0 on entry: set for a row whose bonds broke (both copies of each
+  // are marked broken = 2 for settle_broken_bonds)
+  uint8_t* row_broke = nullptr;
+};
+
+// As add_damped_bond_forces (vel non-null, eta_over_e > 0) or add_bond_forces, except that every
+// intact bond whose exact stretch exceeds s0 (and no end of which is in no_fail) contributes no
+// force: a bond breaks in the evaluation that first sees it past s0. Both copies see the same
+// stretch bit for bit and decide alike, on any thread count.
+void add_bond_forces_breaking(BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
+                              const BreakingEvaluation& breaking, double* force, double* pos_copy = nullptr);
+
+// Completes the breaks an evaluation at pos (and vel) marked: k = 0, broken = 1, flags
+// cleared. Returns the pairs broken; energy_released gets the strain energy they held at pos less,
+// when half_kick > 0, the work their forces would have done over a half-kick of that length
+// after the evaluation (velocity Verlet's, which the bonds no longer take part in).
+long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel, double half_kick,
+                         uint8_t* row_broke, double& energy_released);
+
 // Strain energy sum over pairs of k |xi| s^2 / 2.
 double bond_strain_energy(const BondStore& bonds, const double* pos);
 

@@ -31,16 +31,41 @@ inline Rows rows_of(const BondStore& b) {
           static_cast<int>(b.inv_length_table.size()), b.stiffness.data()};
 }
 
+// Bonds past the critical stretch inside a force loop. A row whose largest intact stretch (as the
+// vector loop computes it) comes within kCutSlack of s0 is summed again by cut_row_forces, which
+// takes the exact stretch of each bond (the same bits for both copies) and leaves out every
+// breakable bond past s0.
+struct RowCut {
+  double s0;
+  const uint8_t* no_fail;  // 1: bonds at this particle never break; may be null
+  uint8_t* broken;         // a bond left out is marked 2 (broken, not yet settled)
+  uint8_t* row_broke;      // set to 1 for a row that left a bond out
+};
+
+// The row maxima of the vector loops may differ from the exact stretch by a few units in the
+// last place (their 1/|y| is a refined estimate); rows within this much of s0 are walked exactly.
+constexpr double kCutSlack = 1e-12;
+
+// Forces of row i (added to fx, fy, which start at 0) without its breakable intact bonds past s0,
+// in the portable formulas; vel null: elastic only. Defined in bond_kernel.cpp.
+void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, const double* vel,
+                    double eta_over_e, double& fx, double& fy);
+
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
 // Rows [begin, end): forces added to force; with most non-null, each row's largest stretch over
-// its intact bonds (-1 without any) written to most[i]. Same formulas as the portable loops in
-// bond_kernel.cpp, to round-off.
-void elastic_rows_avx2(int begin, int end, const Rows& r, const double* pos, double* force, double* most);
+// its intact bonds (-1 without any) written to most[i]; with cut non-null (and most null: a
+// breaking evaluation leaves no maxima), rows near or past s0 summed by cut_row_forces. Same formulas as the portable loops in bond_kernel.cpp, to round-off.
+void elastic_rows_avx2(int begin, int end, const Rows& r, const double* pos, double* force, double* most,
+                       const RowCut* cut);
 void damped_rows_avx2(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
-                      double* force, double* most);
-void elastic_rows_avx512(int begin, int end, const Rows& r, const double* pos, double* force, double* most);
+                      double* force, double* most, const RowCut* cut);
+void elastic_rows_avx512(int begin, int end, const Rows& r, const double* pos, double* force, double* most,
+                         const RowCut* cut);
 void damped_rows_avx512(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
-                        double* force, double* most);
+                        double* force, double* most, const RowCut* cut);
+// Strain energy of rows [begin, end) into sum (a quarter of k |xi| s^2 per stored direction, row
+// by row in order); false (sum untouched) when the class table does not fit two registers.
+bool strain_energy_avx512(int begin, int end, const Rows& r, const double* pos, double& sum);
 // Each row's largest stretch over its intact bonds (-1 without any).
 void row_max_stretch_avx512(int begin, int end, const Rows& r, const double* pos, double* out);
 #endif

@@ -53,7 +53,7 @@ __attribute__((target("avx2"))) inline double lane_max(__m256d v) {
 template <bool kTrack>
 __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows& r,
                                                        const double* __restrict pos, double* __restrict force,
-                                                       double* __restrict most) {
+                                                       double* __restrict most, const RowCut* cut) {
   const __m256d one = _mm256_set1_pd(1.0);
   for (int i = begin; i < end; ++i) {
     const __m256d vxi = _mm256_set1_pd(pos[2 * i]), vyi = _mm256_set1_pd(pos[2 * i + 1]);
@@ -83,9 +83,16 @@ __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows
       fy += f * dy;
       if constexpr (kTrack) top = std::max(top, k > 0.0 ? len * l0 - 1.0 : -1.0);
     }
+    if constexpr (kTrack) {
+      if (most) most[i] = top;
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (cut && top > cut->s0 - kCutSlack) {
+        fx = fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, nullptr, 0.0, fx, fy);
+      }
+    }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
-    if constexpr (kTrack) most[i] = top;
   }
 }
 
@@ -93,7 +100,7 @@ template <bool kTrack>
 __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows& r,
                                                       const double* __restrict pos, const double* __restrict vel,
                                                       double eta_over_e, double* __restrict force,
-                                                      double* __restrict most) {
+                                                      double* __restrict most, const RowCut* cut) {
   const __m256d one = _mm256_set1_pd(1.0), eta = _mm256_set1_pd(eta_over_e);
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1], vxi = vel[2 * i], vyi = vel[2 * i + 1];
@@ -133,27 +140,35 @@ __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows&
       fy += f * dy;
       if constexpr (kTrack) top = std::max(top, k > 0.0 ? len * l0 - 1.0 : -1.0);
     }
+    if constexpr (kTrack) {
+      if (most) most[i] = top;
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (cut && top > cut->s0 - kCutSlack) {
+        fx = fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, vel, eta_over_e, fx, fy);
+      }
+    }
     force[2 * i] += fx;
     force[2 * i + 1] += fy;
-    if constexpr (kTrack) most[i] = top;
   }
 }
 
 }  // namespace
 
-void elastic_rows_avx2(int begin, int end, const Rows& r, const double* pos, double* force, double* most) {
-  if (most)
-    elastic_avx2<true>(begin, end, r, pos, force, most);
+void elastic_rows_avx2(int begin, int end, const Rows& r, const double* pos, double* force, double* most,
+                       const RowCut* cut) {
+  if (most || cut)
+    elastic_avx2<true>(begin, end, r, pos, force, most, cut);
   else
-    elastic_avx2<false>(begin, end, r, pos, force, most);
+    elastic_avx2<false>(begin, end, r, pos, force, most, cut);
 }
 
 void damped_rows_avx2(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
-                      double* force, double* most) {
-  if (most)
-    damped_avx2<true>(begin, end, r, pos, vel, eta_over_e, force, most);
+                      double* force, double* most, const RowCut* cut) {
+  if (most || cut)
+    damped_avx2<true>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
   else
-    damped_avx2<false>(begin, end, r, pos, vel, eta_over_e, force, most);
+    damped_avx2<false>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
 }
 
 }  // namespace periflex

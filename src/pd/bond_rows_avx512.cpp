@@ -79,15 +79,34 @@ PERIFLEX_AVX512 inline __m512d track_max(__m512d top, __m512d r2, __m512d inv_le
   return _mm512_mask_max_pd(top, _mm512_cmp_pd_mask(l.k, _mm512_setzero_pd(), _CMP_GT_OQ), top, s);
 }
 
-template <bool kTrack, bool kSmallTable, bool kOffsets>
+// What a force loop tracks besides the forces: nothing, each row's largest intact stretch, or
+// only whether some intact bond of the row comes near s0 (the cheaper test of a breaking
+// evaluation: r2 / |xi|^2 against (1 + s0 - slack)^2, no reduction per row).
+enum Track { kNothing, kLargest, kNear };
+
+// lanes of intact bonds (k > 0) whose squared length ratio exceeds limit2
+PERIFLEX_AVX512 inline __mmask8 near_lanes(__m512d r2, const Lanes& l, __m512d limit2) {
+  const __mmask8 intact = _mm512_cmp_pd_mask(l.k, _mm512_setzero_pd(), _CMP_GT_OQ);
+  return _mm512_mask_cmp_pd_mask(intact, _mm512_mul_pd(r2, _mm512_mul_pd(l.l0, l.l0)), limit2, _CMP_GT_OQ);
+}
+
+// (1 + s0 - slack)^2 of a breaking evaluation (infinite without one)
+inline double near_limit(const RowCut* cut) {
+  if (!cut) return __builtin_inf();
+  const double ratio = 1.0 + cut->s0 - kCutSlack;
+  return ratio * ratio;
+}
+
+template <Track kTrack, bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 void elastic_avx512(int begin, int end, const Rows& r, const double* __restrict pos,
-                                         double* __restrict force, double* __restrict most) {
-  const __m512d one = _mm512_set1_pd(1.0);
+                                         double* __restrict force, double* __restrict most, const RowCut* cut) {
+  const __m512d one = _mm512_set1_pd(1.0), limit2 = _mm512_set1_pd(near_limit(cut));
   __m512d table_lo, table_hi;
   table_registers(r, table_lo, table_hi);
   for (int i = begin; i < end; ++i) {
     const __m512d xi = _mm512_set1_pd(pos[2 * i]), yi = _mm512_set1_pd(pos[2 * i + 1]);
     __m512d ax = _mm512_setzero_pd(), ay = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
+    __mmask8 near = 0;
     const int64_t last = r.row[i + 1];
     for (int64_t b = r.row[i]; b < last; b += 8) {
       const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
@@ -99,25 +118,38 @@ PERIFLEX_AVX512 void elastic_avx512(int begin, int end, const Rows& r, const dou
       const __m512d f = _mm512_mul_pd(l.k, _mm512_sub_pd(l.l0, inv_len));
       ax = _mm512_fmadd_pd(f, dx, ax);
       ay = _mm512_fmadd_pd(f, dy, ay);
-      if constexpr (kTrack) top = track_max(top, r2, inv_len, l);
+      if constexpr (kTrack == kLargest) top = track_max(top, r2, inv_len, l);
+      if constexpr (kTrack == kNear) near |= near_lanes(r2, l, limit2);
+    }
+    if constexpr (kTrack == kLargest) most[i] = _mm512_reduce_max_pd(top);
+    if constexpr (kTrack == kNear) {
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (near) {
+        double fx = 0.0, fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, nullptr, 0.0, fx, fy);
+        force[2 * i] += fx;
+        force[2 * i + 1] += fy;
+        continue;
+      }
     }
     force[2 * i] += _mm512_reduce_add_pd(ax);
     force[2 * i + 1] += _mm512_reduce_add_pd(ay);
-    if constexpr (kTrack) most[i] = _mm512_reduce_max_pd(top);
   }
 }
 
-template <bool kTrack, bool kSmallTable, bool kOffsets>
+template <Track kTrack, bool kSmallTable, bool kOffsets>
 PERIFLEX_AVX512 void damped_avx512(int begin, int end, const Rows& r, const double* __restrict pos,
                                         const double* __restrict vel, double eta_over_e, double* __restrict force,
-                                        double* __restrict most) {
+                                        double* __restrict most, const RowCut* cut) {
   const __m512d one = _mm512_set1_pd(1.0), eta = _mm512_set1_pd(eta_over_e);
+  const __m512d limit2 = _mm512_set1_pd(near_limit(cut));
   __m512d table_lo, table_hi;
   table_registers(r, table_lo, table_hi);
   for (int i = begin; i < end; ++i) {
     const __m512d xi = _mm512_set1_pd(pos[2 * i]), yi = _mm512_set1_pd(pos[2 * i + 1]);
     const __m512d vxi = _mm512_set1_pd(vel[2 * i]), vyi = _mm512_set1_pd(vel[2 * i + 1]);
     __m512d ax = _mm512_setzero_pd(), ay = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
+    __mmask8 near = 0;
     const int64_t last = r.row[i + 1];
     for (int64_t b = r.row[i]; b < last; b += 8) {
       const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
@@ -134,11 +166,22 @@ PERIFLEX_AVX512 void damped_avx512(int begin, int end, const Rows& r, const doub
           _mm512_mul_pd(l.k, _mm512_fmadd_pd(_mm512_mul_pd(eta, rate), inv_len, _mm512_sub_pd(l.l0, inv_len)));
       ax = _mm512_fmadd_pd(f, dx, ax);
       ay = _mm512_fmadd_pd(f, dy, ay);
-      if constexpr (kTrack) top = track_max(top, r2, inv_len, l);
+      if constexpr (kTrack == kLargest) top = track_max(top, r2, inv_len, l);
+      if constexpr (kTrack == kNear) near |= near_lanes(r2, l, limit2);
+    }
+    if constexpr (kTrack == kLargest) most[i] = _mm512_reduce_max_pd(top);
+    if constexpr (kTrack == kNear) {
+      // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
+      if (near) {
+        double fx = 0.0, fy = 0.0;
+        cut_row_forces(i, r, *cut, pos, vel, eta_over_e, fx, fy);
+        force[2 * i] += fx;
+        force[2 * i + 1] += fy;
+        continue;
+      }
     }
     force[2 * i] += _mm512_reduce_add_pd(ax);
     force[2 * i + 1] += _mm512_reduce_add_pd(ay);
-    if constexpr (kTrack) most[i] = _mm512_reduce_max_pd(top);
   }
 }
 
@@ -163,9 +206,45 @@ PERIFLEX_AVX512 void row_max_avx512(int begin, int end, const Rows& r, const dou
   }
 }
 
-// site picks among the eight compiled variants of an AVX-512 row loop.
+// Sum over rows [begin, end) of a quarter of each row's sum of k |xi| s^2 (the strain energy,
+// each pair visited from both ends), rows added in order. |xi| = 1 / l0 from a second class
+// table; the stretch from the refined 1/|y|, as in the force loops.
+template <bool kOffsets>
+PERIFLEX_AVX512 double energy_avx512(int begin, int end, const Rows& r, const double* __restrict pos) {
+  const __m512d one = _mm512_set1_pd(1.0);
+  __m512d table_lo, table_hi, length_lo, length_hi;
+  table_registers(r, table_lo, table_hi);
+  alignas(64) double lengths[16] = {};
+  for (int c = 1; c < std::min(r.classes, 16); ++c) lengths[c] = r.l0[c] > 0.0 ? 1.0 / r.l0[c] : 0.0;
+  length_lo = _mm512_load_pd(lengths);
+  length_hi = _mm512_load_pd(lengths + 8);
+  double sum = 0.0;
+  for (int i = begin; i < end; ++i) {
+    const __m512d xi = _mm512_set1_pd(pos[2 * i]), yi = _mm512_set1_pd(pos[2 * i + 1]);
+    __m512d acc = _mm512_setzero_pd();
+    const int64_t last = r.row[i + 1];
+    for (int64_t b = r.row[i]; b < last; b += 8) {
+      const Lanes l = load_lanes<true, kOffsets>(r, b, last, i, table_lo, table_hi);
+      const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos, 8), xi);
+      const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos + 1, 8), yi);
+      const __m512d r2 = _mm512_mask_blend_pd(l.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
+      const __m512d s = _mm512_fmsub_pd(_mm512_mul_pd(r2, inverse_length(r2)), l.l0, one);
+      const __m512i cls = _mm512_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(l.mask), r.cls + b));
+      const __m512d length = _mm512_permutex2var_pd(length_lo, cls, length_hi);
+      acc = _mm512_fmadd_pd(_mm512_mul_pd(l.k, length), _mm512_mul_pd(s, s), acc);
+    }
+    sum += 0.25 * _mm512_reduce_add_pd(acc);
+  }
+  return sum;
+}
+
+// the row maxima when asked for (update_fracture after the step reuses them), else the near test
+// of a breaking evaluation
+inline Track tracking(const double* most, const RowCut* cut) { return most ? kLargest : cut ? kNear : kNothing; }
+
+// site picks among the twelve compiled variants of an AVX-512 row loop.
 template <typename Fn>
-void with_avx512_options(const Rows& r, bool track, Fn&& fn) {
+void with_avx512_options(const Rows& r, Track track, Fn&& fn) {
   auto by_offsets = [&](auto t, auto small) {
     if (r.off)
       fn(t, small, std::true_type{});
@@ -178,29 +257,38 @@ void with_avx512_options(const Rows& r, bool track, Fn&& fn) {
     else
       by_offsets(t, std::false_type{});
   };
-  if (track)
-    by_table(std::true_type{});
+  if (track == kNear)
+    by_table(std::integral_constant<Track, kNear>{});
+  else if (track == kLargest)
+    by_table(std::integral_constant<Track, kLargest>{});
   else
-    by_table(std::false_type{});
+    by_table(std::integral_constant<Track, kNothing>{});
 }
 
 }  // namespace
 
-void elastic_rows_avx512(int begin, int end, const Rows& r, const double* pos, double* force, double* most) {
-  with_avx512_options(r, most != nullptr, [&](auto track, auto small, auto offsets) {
-    elastic_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, force, most);
+void elastic_rows_avx512(int begin, int end, const Rows& r, const double* pos, double* force, double* most,
+                         const RowCut* cut) {
+  with_avx512_options(r, tracking(most, cut), [&](auto track, auto small, auto offsets) {
+    elastic_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, force, most, cut);
   });
 }
 
 void damped_rows_avx512(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
-                        double* force, double* most) {
-  with_avx512_options(r, most != nullptr, [&](auto track, auto small, auto offsets) {
-    damped_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, vel, eta_over_e, force, most);
+                        double* force, double* most, const RowCut* cut) {
+  with_avx512_options(r, tracking(most, cut), [&](auto track, auto small, auto offsets) {
+    damped_avx512<track.value, small.value, offsets.value>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
   });
 }
 
+bool strain_energy_avx512(int begin, int end, const Rows& r, const double* pos, double& sum) {
+  if (r.classes > 16) return false;
+  sum = r.off ? energy_avx512<true>(begin, end, r, pos) : energy_avx512<false>(begin, end, r, pos);
+  return true;
+}
+
 void row_max_stretch_avx512(int begin, int end, const Rows& r, const double* pos, double* out) {
-  with_avx512_options(r, false, [&](auto, auto small, auto offsets) {
+  with_avx512_options(r, kNothing, [&](auto, auto small, auto offsets) {
     row_max_avx512<small.value, offsets.value>(begin, end, r, pos, out);
   });
 }

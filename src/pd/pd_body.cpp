@@ -68,6 +68,11 @@ struct PdBody::Impl {
   std::vector<double> stretch_cache_pos, stretch_cache_most;
   bool stretch_cache_valid = false;
   bool tracks_stretch() const { return fracture && std::isfinite(s0); }
+  PdBody::BreakTiming break_timing = PdBody::BreakTiming::kInEvaluation;
+  double step_end = std::numeric_limits<double>::quiet_NaN(), half_kick = 0.0;
+  std::vector<uint8_t> row_broke;   // per particle: a bond of the row broke in this evaluation
+  long pending_broken = 0;          // broken by force evaluations since update_fracture
+  double pending_energy = 0.0;
 
   // Partial-volume factor of the neighbour at grid offset (a, b): without the correction 1
   // inside the horizon; with it the exact fraction of its cell inside the horizon disc
@@ -345,6 +350,12 @@ long PdBody::broken_bond_count() const { return impl_->broken_pairs; }
 bool PdBody::fracture_enabled() const { return impl_->fracture; }
 void PdBody::set_bond_damping(double value) { impl_->bond_damping = value; }
 void PdBody::set_global_damping(double value) { impl_->global_damping = value; }
+void PdBody::set_break_timing(BreakTiming timing) { impl_->break_timing = timing; }
+void PdBody::set_step_end(double t_end, double half_kick) {
+  impl_->step_end = t_end;
+  impl_->half_kick = half_kick;
+}
+
 void PdBody::set_fracture_enabled(bool enabled) {
   impl_->fracture = enabled;
   impl_->stretch_cache_valid = false;
@@ -387,26 +398,43 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
   double* force = g.data() + m.offset;
   const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
 
-  // with fracture on, the kernel also leaves the row maxima of the stretch for update_fracture
-  // (the kernel copies the positions it saw, chunk by chunk)
-  double *most = nullptr, *seen = nullptr;
+  // with fracture on the force loop also sees the stretch: an evaluation that breaks bonds leaves
+  // out those past s0; one that holds every bond leaves the row maxima for update_fracture.
+  // Either way it copies the positions it saw, chunk by chunk.
+  const double* pos = m.pos(q);
+  const double* vel = qd.data() + m.offset;
   if (m.tracks_stretch()) {
-    m.stretch_cache_most.resize(m.n());
     m.stretch_cache_pos.resize(2 * m.n());
     m.stretch_cache_valid = true;
-    most = m.stretch_cache_most.data();
-    seen = m.stretch_cache_pos.data();
+    double* seen = m.stretch_cache_pos.data();
+    if (m.break_timing == BreakTiming::kAfterStep) {
+      m.stretch_cache_most.resize(m.n());
+      if (eta_over_e > 0.0)
+        add_damped_bond_forces(m.bonds, pos, vel, eta_over_e, force, m.stretch_cache_most.data(), seen);
+      else
+        add_bond_forces(m.bonds, pos, force, m.stretch_cache_most.data(), seen);
+    } else {
+      m.row_broke.resize(m.n(), 0);
+      BreakingEvaluation breaking;
+      breaking.s0 = m.s0;
+      breaking.no_fail = m.def.no_fail_regions.empty() ? nullptr : m.no_fail.data();
+      breaking.row_broke = m.row_broke.data();
+      add_bond_forces_breaking(m.bonds, pos, vel, eta_over_e, breaking, force, seen);
+      double energy = 0.0;
+      const double half_kick = t == m.step_end ? m.half_kick : 0.0;
+      const long broken = settle_broken_bonds(m.bonds, pos, vel, half_kick, m.row_broke.data(), energy);
+      m.pending_broken += broken;
+      m.pending_energy += energy;
+      m.broken_pairs += broken;
+    }
+  } else if (eta_over_e > 0.0) {
+    add_damped_bond_forces(m.bonds, pos, vel, eta_over_e, force);
+  } else {
+    add_bond_forces(m.bonds, pos, force);
   }
-
-  // bonds: the damped kernel only when bond damping is on (it needs velocities)
-  if (eta_over_e > 0.0)
-    add_damped_bond_forces(m.bonds, m.pos(q), qd.data() + m.offset, eta_over_e, force, most, seen);
-  else
-    add_bond_forces(m.bonds, m.pos(q), force, most, seen);
 
   // mass-proportional damping -alpha m v
   if (m.global_damping > 0.0) {
-    const double* vel = qd.data() + m.offset;
     for (int i = 0; i < m.n(); ++i) {
       force[2 * i] -= m.global_damping * m.mass[i] * vel[2 * i];
       force[2 * i + 1] -= m.global_damping * m.mass[i] * vel[2 * i + 1];
@@ -456,15 +484,28 @@ double PdBody::external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& q
 FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
   Impl& m = *impl_;
   FractureUpdate update;
+  // what the force evaluations since the last update broke (their forces are without them)
+  update.bonds_broken = m.pending_broken;
+  update.energy_released = m.pending_energy;
+  m.pending_broken = 0;
+  m.pending_energy = 0.0;
   if (!m.fracture || !std::isfinite(m.s0)) return update;
   const uint8_t* no_fail = m.def.no_fail_regions.empty() ? nullptr : m.no_fail.data();
-  // reuse the maxima of the last force evaluation only if it saw exactly these positions
-  const bool cached = m.stretch_cache_valid &&
-                      std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
-  update.bonds_broken = break_stretched_bonds(m.bonds, m.pos(q), m.s0, no_fail, update.energy_released,
-                                              cached ? m.stretch_cache_most.data() : nullptr);
+  // did the last force evaluation see exactly these positions?
+  const bool same = m.stretch_cache_valid &&
+                    std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
   m.stretch_cache_valid = false;
-  m.broken_pairs += update.bonds_broken;
+  // an evaluation that broke bonds at these positions left none past s0
+  if (same && m.break_timing == BreakTiming::kInEvaluation) return update;
+  // otherwise break them now, reusing the row maxima of an evaluation that held every bond
+  const bool cached = same && m.break_timing == BreakTiming::kAfterStep;
+  double energy = 0.0;
+  const long broken = break_stretched_bonds(m.bonds, m.pos(q), m.s0, no_fail, energy,
+                                            cached ? m.stretch_cache_most.data() : nullptr);
+  m.broken_pairs += broken;
+  update.bonds_broken += broken;
+  update.energy_released += energy;
+  update.forces_stale = broken > 0;
   return update;
 }
 
@@ -511,8 +552,9 @@ size_t PdBody::memory_bytes() const {
   const size_t per_particle_doubles = m.reference.capacity() + m.mass.capacity() + m.volume.capacity() +
                                       m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity() +
                                       m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity();
+  const size_t per_particle_bytes = m.no_fail.capacity() + m.row_broke.capacity();
   return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
-         (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + m.no_fail.capacity();
+         (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + per_particle_bytes;
 }
 
 int PdBody::nearest_particle(const Vec2& point) const {

@@ -28,6 +28,8 @@ struct PrescribedCoordinate {
 struct FractureUpdate {
   long bonds_broken = 0;          // in this update
   double energy_released = 0.0;   // strain energy the broken bonds held
+  bool forces_stale = false;      // a bond broke after the last force evaluation (whose forces
+                                  // still hold it): an integrator keeping them must recompute
 };
 
 class PdBody : public ForceElement {
@@ -61,9 +63,21 @@ class PdBody : public ForceElement {
   double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const override;
 
-  // Breaks every bond whose stretch exceeds s0 at q (never in no-fail regions).
+  // Breaks every bond whose stretch exceeds s0 at q (never in no-fail regions) that no force
+  // evaluation broke yet, and reports the bonds the evaluations since the last call broke.
   // Called once per accepted step, and only when fracture is on.
   FractureUpdate update_fracture(const Eigen::VectorXd& q);
+  // When a bond past s0 breaks; the solver sets it for its integrator (docs/peridynamics.md §3).
+  enum class BreakTiming {
+    kInEvaluation,  // in the force evaluation that first sees it, which it takes no part in (the
+                    // default; integrators whose every evaluation is at accepted positions)
+    kAfterStep,     // evaluations (trial stages) hold every intact bond; update_fracture breaks it
+  };
+  void set_break_timing(BreakTiming timing);
+  // Evaluations at time t_end close a step and are followed by a velocity half-kick of length
+  // half_kick (velocity Verlet). A bond they break takes no part in that half-kick, so the energy
+  // booked for it is its strain energy there less the work it would have done over the half-kick.
+  void set_step_end(double t_end, double half_kick);
   bool fracture_enabled() const;
 
   // Damage in [0, 1] per particle.

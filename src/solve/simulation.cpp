@@ -95,6 +95,19 @@ struct Simulation::Impl {
            " integrator";
   }
 
+  // When bonds past s0 break (docs/peridynamics.md §3): in the force evaluation that first sees
+  // them with the integrators that evaluate forces only at accepted positions; the multi-stage
+  // ones hold every intact bond in their trial stages (a stage that dropped a bond, which the
+  // step's weights then count only in part, would spoil the energy balance) and break them at
+  // the accepted positions after the step.
+  void choose_fracture_order() {
+    const std::string& name = integrator->name();
+    using Timing = PdBody::BreakTiming;
+    const Timing timing =
+        name == "verlet" || name == "symplectic_euler" ? Timing::kInEvaluation : Timing::kAfterStep;
+    for (auto& flex : model->flex_bodies) flex->set_break_timing(timing);
+  }
+
   // --- stepping -----------------------------------------------------------------------
   void initialize();
   // one step from `time` to exactly t_end (h = t_end - time, split into sub-steps if needed)
@@ -265,6 +278,9 @@ void Simulation::Impl::advance(double t_end) {
       const double step = t_next - time;
       const bool shake = integrator->is_symplectic() && dynamics->correction().method == CorrectionDef::Method::kProjection;
       if (shake) step_start.q = state.q;
+      // velocity Verlet's evaluation at the end of the step is followed by a half-kick
+      const bool verlet = integrator->name() == "verlet";
+      for (auto& flex : model->flex_bodies) flex->set_step_end(time + step, verlet ? 0.5 * step : 0.0);
       integrator->step(*dynamics, time, step, state);
       time = t_next;
       dynamics->impose_prescribed(time, state.q, state.qd);
@@ -303,7 +319,7 @@ void Simulation::Impl::advance(double t_end) {
           const FractureUpdate update = flex->update_fracture(state.q);
           fracture_energy += update.energy_released;
           broken_bonds += update.bonds_broken;
-          if (update.bonds_broken > 0) integrator->reset();
+          if (update.forces_stale) integrator->reset();
         }
         fracture_seconds += since(fracture_start);
       }
@@ -501,6 +517,7 @@ Simulation::Simulation(const SceneDef& scene) : impl_(std::make_unique<Impl>()) 
     throw InputError({scene.path, 0, 0, "solver.integrator"}, e.detail());
   }
   s.live.integrator = s.integrator->name();
+  s.choose_fracture_order();
   s.live.dt = scene.solver.dt;
   s.live.correction = scene.solver.correction;
   s.live.fracture = true;
@@ -757,6 +774,7 @@ void Simulation::apply(const LiveSettings& settings) {
                                                   " or enable solver.auto_substep");
   }
   s.live.integrator = s.integrator->name();
+  s.choose_fracture_order();
   if (dt != s.live.dt) s.clock.reset(s.time, dt);
   s.live.dt = dt;
   s.live.correction = settings.correction;

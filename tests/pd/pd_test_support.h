@@ -85,8 +85,11 @@ class VerletLoop {
   Eigen::VectorXd& qd() { return qd_; }
   double time() const { return t_; }
 
-  // One step of length dt; breaks bonds afterwards when `fracture` is set.
+  // One step of length dt; with `fracture` the bonds broken in it are reported (by default they
+  // break in the force evaluation at the end of the step; a body set to break them after the step
+  // breaks them here, and the acceleration is evaluated again without them, as the solver does).
   FractureUpdate step(double dt, bool fracture = false) {
+    body_.set_step_end(t_ + dt, 0.5 * dt);
     qd_ += 0.5 * dt * accel_;
     q_ += dt * qd_;
     t_ += dt;
@@ -94,7 +97,10 @@ class VerletLoop {
     accel_ = acceleration(t_);
     qd_ += 0.5 * dt * accel_;
     impose(t_);
-    return fracture ? body_.update_fracture(q_) : FractureUpdate{};
+    if (!fracture) return FractureUpdate{};
+    const FractureUpdate update = body_.update_fracture(q_);
+    if (update.forces_stale) accel_ = acceleration(t_);
+    return update;
   }
 
   double kinetic_energy() const {

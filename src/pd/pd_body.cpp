@@ -500,13 +500,23 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
   // reuse the maxima of the last force evaluation only if it saw exactly these positions
   const bool cached = m.stretch_cache_valid &&
                       std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
-  // state-based: the strain energy does not split into bonds, so the energy released is the drop
-  // of the body's strain energy at these positions, measured only when some row may break
+  // state-based: the strain energy does not split into bonds, but a broken bond changes the energy
+  // of its two ends only, and both are rows whose largest stretch is near s0 (outside no-fail
+  // regions): the energy released is the energy of those rows before minus after
+  std::vector<int> candidates;
   double before = 0.0;
   if (m.state_based) {
-    const bool may_break = !cached || *std::max_element(m.stretch_cache_most.begin(), m.stretch_cache_most.end()) >
-                                          m.s0 - 1e-12;
-    if (may_break) before = potential_energy(q);
+    std::vector<float> most;
+    if (!cached) {
+      most.resize(m.n());
+      max_bond_stretch(m.bonds, m.pos(q), most.data());
+    }
+    for (int i = 0; i < m.n(); ++i) {
+      const double top = cached ? m.stretch_cache_most[i] : double(most.empty() ? 0.0f : most[i]);
+      // float row maxima (when not cached) are within 1e-7 relative of the exact ones
+      if (top > m.s0 * (1.0 - 1e-6) - 1e-12 && !(no_fail && no_fail[i])) candidates.push_back(i);
+    }
+    if (!candidates.empty()) before = state_based_rows_energy(m.bonds, m.lps, m.pos(q), candidates);
   }
   update.bonds_broken = break_stretched_bonds(m.bonds, m.pos(q), m.s0, no_fail, update.energy_released,
                                               cached ? m.stretch_cache_most.data() : nullptr);
@@ -514,8 +524,8 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
     update.energy_released = 0.0;
     if (update.bonds_broken > 0) {
       // the weighted volumes count intact bonds only
-      update_weighted_volumes(m.bonds, m.lps);
-      update.energy_released = before - potential_energy(q);
+      refresh_weighted_volumes(m.bonds, m.lps, candidates);
+      update.energy_released = before - state_based_rows_energy(m.bonds, m.lps, m.pos(q), candidates);
     }
   }
   m.stretch_cache_valid = false;

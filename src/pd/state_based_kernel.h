@@ -28,6 +28,9 @@ struct StateBasedModel {
 // Fills weighted_volume and shear_coef from the intact bonds; call again after bonds break.
 void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model);
 
+// The same for the listed particles only (those whose bonds just broke).
+void refresh_weighted_volumes(const BondStore& bonds, StateBasedModel& model, const std::vector<int>& particles);
+
 // theta_i = (2 V / m_i) sum_j w beta |xi| e into model.dilatation.
 void compute_dilatations(const BondStore& bonds, StateBasedModel& model, const double* pos);
 
@@ -43,6 +46,11 @@ void state_based_energy_density(const BondStore& bonds, const StateBasedModel& m
 
 // Strain energy sum_i V W_i [J], summed in a fixed order (the same bits on any thread count).
 double state_based_strain_energy(const BondStore& bonds, const StateBasedModel& model, const double* pos);
+
+// Strain energy sum V W_i over the listed particles only [J]: breaking a bond changes the energy
+// of its two ends alone, so the energy a fracture update releases is this sum before minus after.
+double state_based_rows_energy(const BondStore& bonds, const StateBasedModel& model, const double* pos,
+                               const std::vector<int>& particles);
 
 // Power the viscous pair forces remove: sum over pairs V^2 w beta (b_i + b_j) eta_over_e (de/dt)^2.
 double state_based_damping_power(const BondStore& bonds, const StateBasedModel& model, const double* pos,

@@ -39,7 +39,7 @@ inline double ref_length(const BondStore& bonds, int64_t b) { return 1.0 / bonds
 // Dilatation rows: theta_i = (2 V / m_i) sum w |xi| (|y| - |xi|), and with kTrack the largest
 // stretch over the intact bonds (-1 without any) into most[i].
 template <bool kTrack>
-void dilatation_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
+inline __attribute__((always_inline)) void dilatation_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
                      const uint8_t* __restrict cls, const double* __restrict l0, const float* __restrict w,
                      const double* __restrict m, double volume, const double* __restrict pos,
                      double* __restrict theta, double* __restrict most) {
@@ -64,7 +64,7 @@ void dilatation_rows(int begin, int end, const int64_t* __restrict row, const in
 
 // Force rows: force_i += V^2 sum w ((a_i + a_j) |xi| + (b_i + b_j) (e + eta/E de/dt)) y / |y|.
 template <bool kDamped>
-void force_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
+inline __attribute__((always_inline)) void force_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
                 const uint8_t* __restrict cls, const double* __restrict l0, const float* __restrict w,
                 const double* __restrict a, const double* __restrict bcoef, double v2, const double* __restrict pos,
                 const double* __restrict vel, double eta_over_e, double* __restrict force) {
@@ -93,6 +93,55 @@ void force_rows(int begin, int end, const int64_t* __restrict row, const int32_t
     force[2 * i] += v2 * fx;
     force[2 * i + 1] += v2 * fy;
   }
+}
+
+// The two row loops compiled three times: for AVX-512, for AVX2 with FMA, and for the baseline
+// ISA, one chosen at run time by what the CPU has. The bodies above are the same for all; the
+// compiler vectorises each for its ISA.
+struct RowLoops {
+  void (*dilatation)(int, int, const int64_t*, const int32_t*, const uint8_t*, const double*, const float*,
+                     const double*, double, const double*, double*, double*);
+  void (*force)(int, int, const int64_t*, const int32_t*, const uint8_t*, const double*, const float*, const double*,
+                const double*, double, const double*, const double*, double, double*);
+};
+
+#define PERIFLEX_LPS_ROW_LOOPS(name, target)                                                                       \
+  target void name##_dilatation(int begin, int end, const int64_t* row, const int32_t* nbr, const uint8_t* cls,     \
+                                const double* l0, const float* w, const double* m, double volume, const double* pos, \
+                                double* theta, double* most) {                                                      \
+    if (most)                                                                                                       \
+      dilatation_rows<true>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                          \
+    else                                                                                                            \
+      dilatation_rows<false>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                         \
+  }                                                                                                                 \
+  target void name##_force(int begin, int end, const int64_t* row, const int32_t* nbr, const uint8_t* cls,          \
+                           const double* l0, const float* w, const double* a, const double* bcoef, double v2,        \
+                           const double* pos, const double* vel, double eta_over_e, double* force) {                \
+    if (vel)                                                                                                        \
+      force_rows<true>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);                \
+    else                                                                                                            \
+      force_rows<false>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);               \
+  }
+
+PERIFLEX_LPS_ROW_LOOPS(baseline, )
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+PERIFLEX_LPS_ROW_LOOPS(avx2, __attribute__((target("avx2,fma"))))
+PERIFLEX_LPS_ROW_LOOPS(avx512, __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,avx2,fma"))))
+#endif
+#undef PERIFLEX_LPS_ROW_LOOPS
+
+// the widest loops the CPU runs, found once
+const RowLoops& row_loops() {
+  static const RowLoops chosen = [] {
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+    if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+        __builtin_cpu_supports("avx512dq"))
+      return RowLoops{avx512_dilatation, avx512_force};
+    if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return RowLoops{avx2_dilatation, avx2_force};
+#endif
+    return RowLoops{baseline_dilatation, baseline_force};
+  }();
+  return chosen;
 }
 
 // W_i of rows [begin, end) into out
@@ -127,13 +176,8 @@ void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedMod
 
 }  // namespace
 
-void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
-  const int n = bonds.particle_count();
-  model.weighted_volume.assign(n, 0.0);
-  model.shear_coef.assign(n, 0.0);
-  model.bulk_coef.assign(n, 0.0);
-  model.dilatation.assign(n, 0.0);
-  for (int i = 0; i < n; ++i) {
+void refresh_weighted_volumes(const BondStore& bonds, StateBasedModel& model, const std::vector<int>& particles) {
+  for (int i : particles) {
     double sum = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
       const double x0 = ref_length(bonds, b);
@@ -144,11 +188,23 @@ void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
   }
 }
 
+void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
+  const int n = bonds.particle_count();
+  model.weighted_volume.assign(n, 0.0);
+  model.shear_coef.assign(n, 0.0);
+  model.bulk_coef.assign(n, 0.0);
+  model.dilatation.assign(n, 0.0);
+  std::vector<int> all(n);
+  for (int i = 0; i < n; ++i) all[i] = i;
+  refresh_weighted_volumes(bonds, model, all);
+}
+
 void compute_dilatations(const BondStore& bonds, StateBasedModel& model, const double* pos) {
+  const RowLoops& loops = row_loops();
   for_rows(bonds.particle_count(), [&](int begin, int end) {
-    dilatation_rows<false>(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                           bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(),
-                           model.volume, pos, model.dilatation.data(), nullptr);
+    loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
+                     bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
+                     pos, model.dilatation.data(), nullptr);
   });
 }
 
@@ -156,17 +212,13 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
                             double eta_over_e, double* force, double* row_max, double* pos_copy) {
   const int n = bonds.particle_count();
   const double bulk = 2.0 * model.kappa - 4.0 * model.mu;
+  const RowLoops& loops = row_loops();
   // pass 1: dilatations (and the row maxima of the stretch), then a_i = (2 kappa - 4 mu) theta_i / m_i
   for_rows(n, [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
-    if (row_max)
-      dilatation_rows<true>(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                            bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(),
-                            model.volume, pos, model.dilatation.data(), row_max);
-    else
-      dilatation_rows<false>(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                             bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(),
-                             model.volume, pos, model.dilatation.data(), nullptr);
+    loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
+                     bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
+                     pos, model.dilatation.data(), row_max);
     for (int i = begin; i < end; ++i) {
       const double m = model.weighted_volume[i];
       model.bulk_coef[i] = m > 0.0 ? bulk * model.dilatation[i] / m : 0.0;
@@ -175,14 +227,9 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
   // pass 2: pair forces, which need a_j of every neighbour, so only after pass 1 has finished
   const double v2 = model.volume * model.volume;
   for_rows(n, [&](int begin, int end) {
-    if (eta_over_e > 0.0)
-      force_rows<true>(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                       bonds.inv_length_table.data(), bonds.stiffness.data(), model.bulk_coef.data(),
-                       model.shear_coef.data(), v2, pos, vel, eta_over_e, force);
-    else
-      force_rows<false>(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                        bonds.inv_length_table.data(), bonds.stiffness.data(), model.bulk_coef.data(),
-                        model.shear_coef.data(), v2, pos, nullptr, 0.0, force);
+    loops.force(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
+                bonds.inv_length_table.data(), bonds.stiffness.data(), model.bulk_coef.data(), model.shear_coef.data(),
+                v2, pos, eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force);
   });
 }
 
@@ -200,6 +247,17 @@ double state_based_strain_energy(const BondStore& bonds, const StateBasedModel& 
     for (int64_t i = begin; i < end; ++i) sum += density[i];
     return model.volume * sum;
   });
+}
+
+double state_based_rows_energy(const BondStore& bonds, const StateBasedModel& model, const double* pos,
+                               const std::vector<int>& particles) {
+  double sum = 0.0;
+  std::vector<double> density(bonds.particle_count());
+  for (int i : particles) {
+    energy_rows(i, i + 1, bonds, model, pos, density.data());
+    sum += density[i];
+  }
+  return model.volume * sum;
 }
 
 double state_based_damping_power(const BondStore& bonds, const StateBasedModel& model, const double* pos,

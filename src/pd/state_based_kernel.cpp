@@ -3,10 +3,12 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
 #include "core/parallel_chunks.h"
+#include "pd/state_based_rows.h"
 
 // This file is built with -fno-math-errno (src/CMakeLists.txt) so that the square roots of the
 // row loops vectorise; the loops have no other use for errno.
@@ -144,6 +146,20 @@ const RowLoops& row_loops() {
   return chosen;
 }
 
+// set by set_state_based_avx512
+std::atomic<bool> wide_loops{true};
+bool lps_wide_loops_allowed() { return wide_loops.load(std::memory_order_relaxed); }
+
+#ifdef PERIFLEX_HAVE_LPS_AVX512
+// true when the AVX-512 row loops may run on this body: the CPU has them, at most 16 length
+// classes, and no kernels narrower than AVX-512 were asked for (tests compare against them)
+bool use_avx512(const BondStore& bonds) {
+  static const bool cpu = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                          __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
+  return cpu && lps_wide_loops_allowed() && bonds.inv_length_table.size() <= 16;
+}
+#endif
+
 // W_i of rows [begin, end) into out
 void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedModel& model, const double* pos,
                  double* out) {
@@ -175,6 +191,8 @@ void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedMod
 }
 
 }  // namespace
+
+void set_state_based_avx512(bool enabled) { wide_loops = enabled; }
 
 void refresh_weighted_volumes(const BondStore& bonds, StateBasedModel& model, const std::vector<int>& particles) {
   for (int i : particles) {
@@ -213,6 +231,25 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
   const int n = bonds.particle_count();
   const double bulk = 2.0 * model.kappa - 4.0 * model.mu;
   const RowLoops& loops = row_loops();
+#ifdef PERIFLEX_HAVE_LPS_AVX512
+  // the AVX-512 loops (undamped) when the CPU has them and the class tables fit two registers
+  if (use_avx512(bonds) && !(eta_over_e > 0.0)) {
+    const double v2 = model.volume * model.volume;
+    for_rows(n, [&](int begin, int end) {
+      if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
+      lps_extension_sums_avx512(begin, end, bonds, pos, model.dilatation.data(), row_max);
+      for (int i = begin; i < end; ++i) {
+        const double m = model.weighted_volume[i];
+        model.dilatation[i] = m > 0.0 ? 2.0 * model.volume * model.dilatation[i] / m : 0.0;
+        model.bulk_coef[i] = m > 0.0 ? bulk * model.dilatation[i] / m : 0.0;
+      }
+    });
+    for_rows(n, [&](int begin, int end) {
+      lps_forces_avx512(begin, end, bonds, model.bulk_coef.data(), model.shear_coef.data(), v2, pos, force);
+    });
+    return;
+  }
+#endif
   // pass 1: dilatations (and the row maxima of the stretch), then a_i = (2 kappa - 4 mu) theta_i / m_i
   for_rows(n, [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);

@@ -25,6 +25,10 @@ struct StateBasedModel {
   std::vector<double> dilatation;        // theta_i of the last dilatation pass (scratch)
 };
 
+// Allows (default) or forbids the hand-written AVX-512 row loops; without them the compiled
+// loops run (AVX2 or baseline). The two agree to round-off; this is for tests and comparisons.
+void set_state_based_avx512(bool enabled);
+
 // Fills weighted_volume and shear_coef from the intact bonds; call again after bonds break.
 void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model);
 

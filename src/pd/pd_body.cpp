@@ -578,7 +578,8 @@ size_t PdBody::memory_bytes() const {
                                       m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity() +
                                       m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity() +
                                       m.lps.weighted_volume.capacity() + m.lps.shear_coef.capacity() +
-                                      m.lps.bulk_coef.capacity() + m.lps.dilatation.capacity();
+                                      m.lps.bulk_coef.capacity() + m.lps.dilatation.capacity() +
+                                      m.lps.coef_pairs.capacity();
   return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
          (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + m.no_fail.capacity();
 }

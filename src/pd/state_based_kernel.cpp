@@ -212,6 +212,7 @@ void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
   model.shear_coef.assign(n, 0.0);
   model.bulk_coef.assign(n, 0.0);
   model.dilatation.assign(n, 0.0);
+  model.coef_pairs.assign(2 * static_cast<size_t>(n), 0.0);
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;
   refresh_weighted_volumes(bonds, model, all);
@@ -242,10 +243,12 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
         const double m = model.weighted_volume[i];
         model.dilatation[i] = m > 0.0 ? 2.0 * model.volume * model.dilatation[i] / m : 0.0;
         model.bulk_coef[i] = m > 0.0 ? bulk * model.dilatation[i] / m : 0.0;
+        model.coef_pairs[2 * i] = model.bulk_coef[i];
+        model.coef_pairs[2 * i + 1] = model.shear_coef[i];
       }
     });
     for_rows(n, [&](int begin, int end) {
-      lps_forces_avx512(begin, end, bonds, model.bulk_coef.data(), model.shear_coef.data(), v2, pos, force);
+      lps_forces_avx512(begin, end, bonds, model.coef_pairs.data(), v2, pos, force);
     });
     return;
   }

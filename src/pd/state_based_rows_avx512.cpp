@@ -99,27 +99,26 @@ PERIFLEX_LPS_AVX512 void lps_extension_sums_avx512(int begin, int end, const Bon
     extension_sums<false>(begin, end, bonds, pos, sum, most);
 }
 
-PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* __restrict a,
-                                           const double* __restrict bcoef, double v2, const double* __restrict pos,
-                                           double* __restrict force) {
+PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* __restrict ab,
+                                           double v2, const double* __restrict pos, double* __restrict force) {
   const ClassTables t = class_tables(bonds);
   const __m512d one = _mm512_set1_pd(1.0);
   for (int i = begin; i < end; ++i) {
     const __m512d xi = _mm512_set1_pd(pos[2 * i]), yi = _mm512_set1_pd(pos[2 * i + 1]);
-    const __m512d ai = _mm512_set1_pd(a[i]), bi = _mm512_set1_pd(bcoef[i]);
+    const __m512d ai = _mm512_set1_pd(ab[2 * i]), bi = _mm512_set1_pd(ab[2 * i + 1]);
     __m512d fx = _mm512_setzero_pd(), fy = _mm512_setzero_pd();
     const int64_t last = bonds.row[i + 1];
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
       const Block k = load_block(bonds, b, last, i);
-      const __m256i j = _mm256_srli_epi32(k.twice_j, 1);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos, 8), xi);
       const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos + 1, 8), yi);
       const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
       const __m512d inv_len = reciprocal_length(r2);
       const __m512d len = _mm512_mul_pd(r2, inv_len);
       const __m512d x0 = _mm512_permutex2var_pd(t.length_lo, k.cls, t.length_hi);
-      const __m512d aj = _mm512_add_pd(ai, _mm512_i32gather_pd(j, a, 8));
-      const __m512d bj = _mm512_add_pd(bi, _mm512_i32gather_pd(j, bcoef, 8));
+      // a_j and b_j side by side, as x_j and y_j are: the same index, one cache line
+      const __m512d aj = _mm512_add_pd(ai, _mm512_i32gather_pd(k.twice_j, ab, 8));
+      const __m512d bj = _mm512_add_pd(bi, _mm512_i32gather_pd(k.twice_j, ab + 1, 8));
       // w ((a_i + a_j) |xi| + (b_i + b_j) (|y| - |xi|)) / |y|
       const __m512d pair = _mm512_fmadd_pd(aj, x0, _mm512_mul_pd(bj, _mm512_sub_pd(len, x0)));
       const __m512d f = _mm512_mul_pd(_mm512_mul_pd(k.w, pair), inv_len);

@@ -45,6 +45,17 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
   std::printf("  %-22s%d\n", "force elements", m.force_elements);
   std::printf("  %-22s%d\n", "probes", m.probes);
   std::printf("  %-22s%d (%ld particles, %ld bonds)\n", "flexible bodies", m.flex_bodies, m.particles, m.bonds);
+  // the peridynamic model of each flexible body, as the material selected it
+  for (const FlexBodyDef& flex : scene.flex_bodies) {
+    const PdMaterialDef& mat = flex.material;
+    const char* plane = mat.plane_strain ? "plane strain" : "plane stress";
+    if (mat.model == PdMaterialDef::Model::kStateBased)
+      std::printf("  %-22s'%s': state-based (LPS), %s, poisson_ratio = %g\n", "peridynamic model", flex.name.c_str(),
+                  plane, mat.poisson_ratio);
+    else
+      std::printf("  %-22s'%s': bond-based, %s, poisson_ratio = %s\n", "peridynamic model", flex.name.c_str(), plane,
+                  mat.plane_strain ? "1/4" : "1/3");
+  }
   std::printf("  %-22s%d\n", "coordinates", m.coordinates);
   std::printf("  %-22s%d (%d redundant)\n", "constraint equations", m.constraint_equations, m.redundant_equations);
   print_list("redundant", m.redundant_constraints);

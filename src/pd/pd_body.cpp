@@ -11,6 +11,8 @@
 #include "pd/neighbor_search.h"
 #include "pd/particle_grid.h"
 #include "pd/pd_material.h"
+#include "pd/state_based_kernel.h"
+#include "pd/state_based_material.h"
 
 namespace periflex {
 
@@ -59,6 +61,10 @@ struct PdBody::Impl {
   bool fracture = false;
   double bond_damping = 0.0, global_damping = 0.0;
   long broken_pairs = 0;
+  // model = "state_based": the LPS constants and per-particle state; bonds.stiffness then holds
+  // each bond's weight w beta instead of its stiffness (state_based_kernel.h)
+  bool state_based = false;
+  StateBasedModel lps;
   std::vector<PrescribedCoordinate> prescribed;
   std::vector<AppliedLoad> loads;
   std::vector<std::string> warnings;
@@ -192,6 +198,17 @@ struct PdBody::Impl {
     }
   }
 
+  // State-based bonds carry their weight w beta = k0 / (c V^2) (identical in both directions, as
+  // k0 is); the weighted volumes follow from them. The energy-method factors of set_stiffness are
+  // not applied: m_i summed over the particle's own (truncated) family already keeps the
+  // dilatation of an isotropic expansion exact at a free edge.
+  void set_state_weights(const std::vector<double>& k0) {
+    const double v = volume.front();
+    bonds.stiffness.resize(k0.size());
+    for (size_t b = 0; b < k0.size(); ++b) bonds.stiffness[b] = static_cast<float>(k0[b] / (c * v * v));
+    update_weighted_volumes(bonds, lps);
+  }
+
   // Region loads: imposed motions become prescribed coordinates, tractions and body forces
   // become per-particle force scales.
   void collect_loads() {
@@ -300,8 +317,20 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   m->c = periflex::micromodulus(mat.youngs_modulus, def.thickness, m->delta, mat.plane_strain);
   m->fracture = def.fracture;
   m->s0 = std::numeric_limits<double>::infinity();
+  m->state_based = mat.model == PdMaterialDef::Model::kStateBased;
+  if (m->state_based) {
+    const double nu = mat.poisson_ratio;
+    require(nu > -1.0 && (mat.plane_strain ? nu < 0.5 : nu <= 0.5), "material.poisson_ratio",
+            "the state-based model needs -1 < poisson_ratio < 0.5 (plane stress also 0.5)");
+    m->lps.volume = v;
+    m->lps.kappa = lps_bulk_modulus(mat.youngs_modulus, nu, mat.plane_strain);
+    m->lps.mu = lps_shear_modulus(mat.youngs_modulus, nu);
+  }
   if (mat.critical_stretch > 0.0) {
     m->s0 = mat.critical_stretch;
+  } else if (mat.fracture_energy > 0.0 && m->state_based) {
+    m->s0 = lps_critical_stretch_from_energy(mat.fracture_energy, mat.youngs_modulus, mat.poisson_ratio, m->delta,
+                                             mat.plane_strain, def.influence);
   } else if (mat.fracture_energy > 0.0) {
     m->s0 = critical_stretch_from_energy(mat.fracture_energy, mat.youngs_modulus, m->delta, mat.plane_strain,
                                          def.influence);
@@ -309,7 +338,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
     m->warnings.push_back("fracture is on but neither fracture_energy nor critical_stretch is given; "
                           "bonds will not break");
   }
-  if (mat.poisson_ratio >= 0.0) {
+  if (!m->state_based && mat.poisson_ratio >= 0.0) {
     const double implied = implied_poisson_ratio(mat.plane_strain);
     if (std::abs(mat.poisson_ratio - implied) > 1e-3) {
       std::ostringstream msg;
@@ -329,7 +358,10 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   m->build_beta_table();
   std::vector<double> k0, nx2;
   m->make_bonds(k0, nx2);
-  m->set_stiffness(k0, nx2);
+  if (m->state_based)
+    m->set_state_weights(k0);
+  else
+    m->set_stiffness(k0, nx2);
   m->collect_loads();
 
   m->bond_damping = def.bond_damping;
@@ -383,6 +415,7 @@ std::vector<double> PdBody::initial_velocities() const {
 double PdBody::critical_time_step() const {
   const Impl& m = *impl_;
   const BondStore& b = m.bonds;
+  if (m.state_based) return state_based_critical_time_step(b, m.lps, m.mass);
   // Silling & Askari (2005): dt < sqrt(2 rho / sum_j C_ij V_j / |xi|) = sqrt(2 m_i / sum_b k_b / |xi_b|)
   double dt = std::numeric_limits<double>::infinity();
   for (int i = 0; i < m.n(); ++i) {
@@ -407,7 +440,11 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
     m.stretch_cache_pos.resize(2 * m.n());
     m.stretch_cache_valid = true;
     double* seen = m.stretch_cache_pos.data();
-    if (m.break_timing == BreakTiming::kAfterStep) {
+    if (m.state_based) {
+      // state-based bonds break after the step (update_fracture), from these row maxima
+      m.stretch_cache_most.resize(m.n());
+      add_state_based_forces(m.bonds, m.lps, pos, vel, eta_over_e, force, m.stretch_cache_most.data(), seen);
+    } else if (m.break_timing == BreakTiming::kAfterStep) {
       m.stretch_cache_most.resize(m.n());
       if (eta_over_e > 0.0)
         add_damped_bond_forces(m.bonds, pos, vel, eta_over_e, force, m.stretch_cache_most.data(), seen);
@@ -427,6 +464,8 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
       m.pending_energy += energy;
       m.broken_pairs += broken;
     }
+  } else if (m.state_based) {
+    add_state_based_forces(m.bonds, m.lps, pos, vel, eta_over_e, force, nullptr, nullptr);
   } else if (eta_over_e > 0.0) {
     add_damped_bond_forces(m.bonds, pos, vel, eta_over_e, force);
   } else {
@@ -453,6 +492,7 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
 }
 
 double PdBody::potential_energy(const Eigen::VectorXd& q) const {
+  if (impl_->state_based) return state_based_strain_energy(impl_->bonds, impl_->lps, impl_->pos(q));
   return bond_strain_energy(impl_->bonds, impl_->pos(q));
 }
 
@@ -461,7 +501,10 @@ double PdBody::dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd
   const double* vel = qd.data() + m.offset;
   double power = 0.0;
   const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
-  if (eta_over_e > 0.0) power += bond_damping_power(m.bonds, m.pos(q), vel, eta_over_e);
+  if (eta_over_e > 0.0 && m.state_based)
+    power += state_based_damping_power(m.bonds, m.lps, m.pos(q), vel, eta_over_e);
+  else if (eta_over_e > 0.0)
+    power += bond_damping_power(m.bonds, m.pos(q), vel, eta_over_e);
   if (m.global_damping > 0.0) {
     for (int i = 0; i < m.n(); ++i)
       power += m.global_damping * m.mass[i] * (vel[2 * i] * vel[2 * i] + vel[2 * i + 1] * vel[2 * i + 1]);
@@ -495,13 +538,40 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
   const bool same = m.stretch_cache_valid &&
                     std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
   m.stretch_cache_valid = false;
-  // an evaluation that broke bonds at these positions left none past s0
-  if (same && m.break_timing == BreakTiming::kInEvaluation) return update;
+  // a bond-based evaluation that broke bonds at these positions left none past s0 (state-based
+  // evaluations hold every bond: their bonds break here)
+  if (same && !m.state_based && m.break_timing == BreakTiming::kInEvaluation) return update;
   // otherwise break them now, reusing the row maxima of an evaluation that held every bond
-  const bool cached = same && m.break_timing == BreakTiming::kAfterStep;
+  const bool cached = same && (m.state_based || m.break_timing == BreakTiming::kAfterStep);
+  // state-based: the strain energy does not split into bonds, but a broken bond changes the energy
+  // of its two ends only, and both are rows whose largest stretch is near s0 (outside no-fail
+  // regions): the energy released is the energy of those rows before minus after
+  std::vector<int> candidates;
+  double before = 0.0;
+  if (m.state_based) {
+    std::vector<float> most;
+    if (!cached) {
+      most.resize(m.n());
+      max_bond_stretch(m.bonds, m.pos(q), most.data());
+    }
+    for (int i = 0; i < m.n(); ++i) {
+      const double top = cached ? m.stretch_cache_most[i] : double(most.empty() ? 0.0f : most[i]);
+      // float row maxima (when not cached) are within 1e-7 relative of the exact ones
+      if (top > m.s0 * (1.0 - 1e-6) - 1e-12 && !(no_fail && no_fail[i])) candidates.push_back(i);
+    }
+    if (!candidates.empty()) before = state_based_rows_energy(m.bonds, m.lps, m.pos(q), candidates);
+  }
   double energy = 0.0;
   const long broken = break_stretched_bonds(m.bonds, m.pos(q), m.s0, no_fail, energy,
                                             cached ? m.stretch_cache_most.data() : nullptr);
+  if (m.state_based) {
+    energy = 0.0;
+    if (broken > 0) {
+      // the weighted volumes count intact bonds only
+      refresh_weighted_volumes(m.bonds, m.lps, candidates);
+      energy = before - state_based_rows_energy(m.bonds, m.lps, m.pos(q), candidates);
+    }
+  }
   m.broken_pairs += broken;
   update.bonds_broken += broken;
   update.energy_released += energy;
@@ -535,6 +605,7 @@ void PdBody::strain_energy_density(const Eigen::VectorXd& q, std::vector<double>
   const BondStore& b = m.bonds;
   const double* p = m.pos(q);
   out.resize(m.n());
+  if (m.state_based) return state_based_energy_density(b, m.lps, p, out.data());
   for (int i = 0; i < m.n(); ++i) {
     double sum = 0.0;
     for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) {
@@ -551,7 +622,10 @@ size_t PdBody::memory_bytes() const {
   const Impl& m = *impl_;
   const size_t per_particle_doubles = m.reference.capacity() + m.mass.capacity() + m.volume.capacity() +
                                       m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity() +
-                                      m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity();
+                                      m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity() +
+                                      m.lps.weighted_volume.capacity() + m.lps.shear_coef.capacity() +
+                                      m.lps.bulk_coef.capacity() + m.lps.dilatation.capacity() +
+                                      m.lps.coef_pairs.capacity();
   const size_t per_particle_bytes = m.no_fail.capacity() + m.row_broke.capacity();
   return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
          (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + per_particle_bytes;

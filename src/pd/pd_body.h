@@ -1,4 +1,5 @@
-// A peridynamic flexible body (bond-based, 2D): its particles are point masses of the
+// A peridynamic flexible body (2D; bond-based, or ordinary state-based when its material says
+// model = "state_based", see state_based_kernel.h): its particles are point masses of the
 // multibody system, their coordinates a contiguous slice [x0 y0 x1 y1 ...] of q that
 // starts at coordinate_offset(). Bond forces enter g through ForceElement::add_forces.
 //
@@ -53,7 +54,8 @@ class PdBody : public ForceElement {
   long bond_count() const;        // intact + broken, each pair once
   long broken_bond_count() const;
 
-  // Silling & Askari (2005) critical step of explicit integration, min over particles.
+  // Silling & Askari (2005) critical step of explicit integration, min over particles (for the
+  // state-based model through the bound in state_based_kernel.h).
   double critical_time_step() const;
 
   // ForceElement: bond forces, bond damping, global damping and loads into g.
@@ -111,7 +113,8 @@ class PdBody : public ForceElement {
   double critical_stretch() const;
   // The bond arrays (CSR, both directions), for tests, benchmarks and diagnostics.
   const BondStore& bonds() const;
-  // Strain energy density [J/m^3] of each particle at q: (1/V_i) sum_j k |xi| s^2 / 4.
+  // Strain energy density [J/m^3] of each particle at q: (1/V_i) sum_j k |xi| s^2 / 4 bond-based,
+  // the LPS energy density W_i state-based.
   void strain_energy_density(const Eigen::VectorXd& q, std::vector<double>& out) const;
   // Heap bytes held by particles and bonds.
   size_t memory_bytes() const;

@@ -563,6 +563,23 @@ class SceneBuilder {
     if (energy) check_range(in, "fracture_energy", *energy, 1e-12, 1e8, "J/m^2");
     if (stretch) check_range(in, "critical_stretch", *stretch, 1e-12, 10.0, "");
     m.plane_strain = in.choice("plane", {"stress", "strain"}, "stress") == "strain";
+    m.model = in.choice("model", {"bond_based", "state_based"}, "bond_based") == "state_based"
+                  ? PdMaterialDef::Model::kStateBased
+                  : PdMaterialDef::Model::kBondBased;
+    // the state-based model takes any admissible Poisson ratio: -1 < nu < 1/2, and in plane
+    // stress also nu = 1/2 (an incompressible sheet thins instead; its 2D bulk modulus E/(2(1-nu)) stays finite)
+    if (m.model == PdMaterialDef::Model::kStateBased) {
+      const auto nu = in.optional_number("poisson_ratio");
+      if (!nu) in.fail_missing("poisson_ratio", "model = \"state_based\" needs Poisson's ratio");
+      const bool inside = m.plane_strain ? (*nu > -1.0 && *nu < 0.5) : (*nu > -1.0 && *nu <= 0.5);
+      if (!inside)
+        in.fail("poisson_ratio", "poisson_ratio " + format_number(*nu) + " is outside " +
+                (m.plane_strain ? "(-1, 0.5) in plane strain (at 0.5 the 2D bulk modulus is infinite)"
+                                : "(-1, 0.5] in plane stress"));
+      m.poisson_ratio = *nu;
+      in.finish();
+      return m;
+    }
     // bond-based peridynamics fixes Poisson's ratio: 1/3 in plane stress, 1/4 in plane strain
     if (const auto nu = in.optional_number("poisson_ratio")) {
       const double fixed = m.plane_strain ? 0.25 : 1.0 / 3.0;

@@ -138,7 +138,11 @@ struct PdMaterialDef {
   double fracture_energy = 0.0;  // G0 [J/m^2]; used when critical_stretch is not given
   double critical_stretch = 0.0; // s0; > 0 overrides fracture_energy
   bool plane_strain = false;     // default plane stress
-  double poisson_ratio = -1.0;   // < 0: not stated; otherwise checked against 1/3 or 1/4
+  // kBondBased: Poisson's ratio fixed by the model (1/3 plane stress, 1/4 plane strain);
+  // kStateBased: ordinary state-based (LPS) with the stated poisson_ratio (docs/peridynamics.md)
+  enum class Model { kBondBased, kStateBased } model = Model::kBondBased;
+  // bond-based: < 0 when not stated, otherwise checked against 1/3 or 1/4; state-based: required
+  double poisson_ratio = -1.0;
 };
 
 // A segment cutting every bond that crosses it at set-up.

@@ -56,6 +56,27 @@ TEST(CommandLine, CheckDescribesTheModel) {
   EXPECT_NE(r.output.find("degrees of freedom    0"), std::string::npos) << r.output;
 }
 
+// check names the peridynamic model of every flexible body; a state-based Poisson ratio outside
+// the range of its plane condition is refused with exit 2, naming the key.
+TEST(CommandLine, CheckNamesEachFlexibleBodysModel) {
+  const auto r = run_periflex("check " + scene("notched_plate_models.toml"));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("'bond_based': bond-based, plane stress, poisson_ratio = 1/3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("'state_based': state-based (LPS), plane stress, poisson_ratio = 0.3"), std::string::npos)
+      << r.output;
+  const auto strain = run_periflex("check " + scene("notched_plate_models.toml") +
+                                   " --set flex_body.state_based.material.plane=strain"
+                                   " --set flex_body.state_based.material.poisson_ratio=0.5");
+  EXPECT_EQ(strain.exit_code, 2) << strain.output;
+  EXPECT_NE(strain.output.find("flex_body.state_based.material.poisson_ratio"), std::string::npos) << strain.output;
+  EXPECT_NE(strain.output.find("plane strain"), std::string::npos) << strain.output;
+  // the same value is admissible in plane stress
+  EXPECT_EQ(run_periflex("check " + scene("notched_plate_models.toml") +
+                         " --set flex_body.state_based.material.poisson_ratio=0.5")
+                .exit_code,
+            0);
+}
+
 // Parses a CSV body into rows of numbers, failing on any row with a wrong column count.
 std::vector<std::vector<double>> parse_csv(const std::string& text, std::vector<std::string>& header) {
   std::vector<std::vector<double>> rows;

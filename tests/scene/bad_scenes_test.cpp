@@ -65,6 +65,10 @@ const BadCase kBadCases[] = {
     {"float_threads.toml", 3, "solver.threads", "expected an integer"},
     {"hht_alpha_out_of_range.toml", 4, "solver.hht_alpha", "must be in [-1/3, 0]"},
     {"missing_joint_name.toml", 8, "joint.0.name", "missing required key 'name'"},
+    {"state_based_nu_half_plane_strain.toml", 12, "flex_body.plate.material.poisson_ratio", "outside (-1, 0.5) in plane strain"},
+    {"state_based_nu_above_half_plane_stress.toml", 11, "flex_body.plate.material.poisson_ratio", "outside (-1, 0.5] in plane stress"},
+    {"state_based_without_poisson_ratio.toml", 6, "flex_body.plate.material.poisson_ratio", "missing required key 'poisson_ratio'"},
+    {"unknown_pd_model.toml", 10, "flex_body.plate.material.model", "correspondence"},
 };
 
 TEST(BadScenes, EachIsRefusedAtTheRightLineAndKey) {

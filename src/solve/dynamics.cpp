@@ -402,6 +402,11 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
     if (flex->bond_damping() != 0.0 || flex->global_damping() != 0.0) dissipated += flex->dissipation_power(q, qd);
     external += flex->external_power(q, qd, t);
   }
+  // contacts of [[contact]] (an empty list without them)
+  for (auto& contact : model_.contacts) {
+    contact->add_forces(q, qd, t, g_);
+    dissipated += contact->dissipation_power(q, qd);
+  }
   if (mouse_) {
     const Vec2 target = mouse_->target_at(t);
     if (mouse_->point.body >= 0) {

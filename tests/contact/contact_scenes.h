@@ -61,3 +61,49 @@ inline std::string write_scene(const std::filesystem::path& dir, const std::stri
 }
 
 }  // namespace periflex::test
+
+namespace periflex::test {
+
+// Two elastic discs of radius `radius` (dx = 1 mm, E = 100 MPa, rho = 1000 kg/m^3: wave speed
+// 316 m/s) thrown at each other at 5 m/s each along a line 2 mm off their centres, one spacing
+// apart, with particle contact between them (and within each). No gravity, Verlet.
+inline std::string discs_scene(double radius, double dt, double end_time, const std::string& contact_extra = "") {
+  char text[2048];
+  const double gap = 1e-3;
+  std::snprintf(text, sizeof text, R"([scene]
+name = "discs"
+gravity = [0, 0]
+[solver]
+integrator = "verlet"
+dt = %.17g
+end_time = %.17g
+[[flex_body]]
+name = "left"
+shape = { type = "circle", center = [%.17g, 0.001], radius = %.17g }
+grid_spacing = 0.001
+thickness = 0.01
+fracture = false
+velocity = [5, 0]
+[flex_body.material]
+youngs_modulus = 1e8
+density = 1000
+[[flex_body]]
+name = "right"
+shape = { type = "circle", center = [%.17g, -0.001], radius = %.17g }
+grid_spacing = 0.001
+thickness = 0.01
+fracture = false
+velocity = [-5, 0]
+[flex_body.material]
+youngs_modulus = 1e8
+density = 1000
+[[contact]]
+name = "touch"
+type = "particles"
+flex_bodies = ["left", "right"]
+)",
+                dt, end_time, -radius - 0.5 * gap, radius, radius + 0.5 * gap, radius);
+  return std::string(text) + contact_extra;
+}
+
+}  // namespace periflex::test

@@ -181,6 +181,13 @@ void Simulation::Impl::build_info() {
                                                  std::to_string(substeps_for(scene.solver.dt)) + " sub-steps"
                                            : "; lower solver.dt or set solver.auto_substep = true"));
   }
+  // bodies that start inside each other are pushed apart at once, with the full penalty force
+  for (const auto& contact : m.contacts) {
+    const long overlapping = contact->totals(m.q0, m.qd0).active;
+    if (overlapping > 0)
+      w.push_back("contact '" + contact->name() + "': " + std::to_string(overlapping) +
+                  " contact(s) active at t = 0: the bodies start overlapping and are pushed apart at once");
+  }
   for (size_t k = 0; k < m.flex_bodies.size(); ++k) {
     const PdBody& flex = *m.flex_bodies[k];
     for (const auto& text : flex.warnings()) w.push_back("flexible body '" + flex.name() + "': " + text);

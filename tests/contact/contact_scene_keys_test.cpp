@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "../cli/run_program.h"
@@ -108,6 +109,41 @@ TEST(ContactSceneKeys, SceneWithoutContactHasNoContactColumnsOrModule) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   const std::string series = read_text(dir / "out" / "series.csv");
   EXPECT_EQ(series.substr(0, series.find('\n')).find("contact"), std::string::npos);
+}
+
+// The critical time step `check` prints, in seconds.
+double printed_critical_step(const std::string& output) {
+  const auto at = output.find("critical time step");
+  return at == std::string::npos ? 0.0 : std::stod(output.substr(output.find_first_of("0123456789", at)));
+}
+
+TEST(ContactSceneKeys, CheckPrintsTheCriticalStepWithTheContactStiffnessAdded) {
+  // the bonds' bound alone (no contact) and with the default contact stiffness
+  // k = 15 c V^2 / delta on the lightest particle: 1 / dt^2 = 1 / dt_bonds^2 + k / (2 m)
+  const auto dir = fresh_directory("contact_critical");
+  const std::string none = kStriker.substr(0, kStriker.find("[[contact]]"));
+  const double bonds = printed_critical_step(run_periflex("check " + test::write_scene(dir, "none.toml", none)).output);
+  const double with = printed_critical_step(run_periflex("check " + test::write_scene(dir, "with.toml", kStriker)).output);
+  ASSERT_GT(bonds, 0.0);
+  const double e = 200e9, t = 0.02, dx = 0.01, delta = 3 * dx, rho = 7850.0, volume = dx * dx * t;
+  const double c = 9.0 * e / (3.14159265358979323846 * t * delta * delta * delta);
+  const double k = 15.0 * c * volume * volume / delta, m = rho * volume;
+  const double expected = 1.0 / std::sqrt(1.0 / (bonds * bonds) + k / (2.0 * m));
+  EXPECT_NEAR(with / expected, 1.0, 1e-5) << with << " vs " << expected;
+  EXPECT_LT(with, 0.95 * bonds);
+}
+
+TEST(ContactSceneKeys, CheckWarnsOfBodiesThatStartOverlapping) {
+  // the striker's face 3 mm into the strip: the first column of five particles (0.5 dx deep
+  // at 5 mm) is inside the margin; a face 1 um short of the surface touches nothing
+  const auto dir = fresh_directory("contact_overlap");
+  std::string overlapping = kStriker;
+  overlapping.replace(overlapping.find("position = [-0.050001, 0]"), 25, "position = [-0.047, 0]   ");
+  const auto check = run_periflex("check " + test::write_scene(dir, "overlap.toml", overlapping));
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  EXPECT_NE(check.output.find("contact 'impact': 5 contact(s) active at t = 0"), std::string::npos) << check.output;
+  const auto clear = run_periflex("check " + test::write_scene(dir, "clear.toml", kStriker));
+  EXPECT_EQ(clear.output.find("active at t = 0"), std::string::npos) << clear.output;
 }
 
 TEST(ContactSceneKeys, StiffnessThatMakesTheStepUnstableIsRefusedUpFront) {

@@ -18,6 +18,10 @@ struct ContactTotals {
 
 class ContactElement : public ForceElement {
  public:
+  // g += contact forces at (q, qd); returns the power they dissipate (add_forces and
+  // dissipation_power in one pass over the particles, as the stepper needs both).
+  virtual double add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
+                                        Eigen::VectorXd& g) = 0;
   // Active contacts and their normal forces at (q, qd).
   virtual ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) = 0;
   // Silling-Askari form sqrt(2 m / K) of the critical step of the particles this contact

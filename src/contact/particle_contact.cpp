@@ -139,6 +139,11 @@ void ParticleContact::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd
   sweep(q, &qd, &g);
 }
 
+double ParticleContact::add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double,
+                                              Eigen::VectorXd& g) {
+  return sweep(q, &qd, &g).dissipation;
+}
+
 double ParticleContact::potential_energy(const Eigen::VectorXd& q) const { return sweep(q, nullptr, nullptr).energy; }
 
 double ParticleContact::dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {

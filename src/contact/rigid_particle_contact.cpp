@@ -127,6 +127,11 @@ void RigidParticleContact::add_forces(const Eigen::VectorXd& q, const Eigen::Vec
   sweep(q, &qd, &g);
 }
 
+double RigidParticleContact::add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double,
+                                                   Eigen::VectorXd& g) {
+  return sweep(q, &qd, &g).dissipation;
+}
+
 double RigidParticleContact::potential_energy(const Eigen::VectorXd& q) const {
   return sweep(q, nullptr, nullptr).energy;
 }

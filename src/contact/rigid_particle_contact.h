@@ -27,6 +27,8 @@ class RigidParticleContact final : public ContactElement {
 
   const std::string& name() const override { return def_.name; }
   void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
+  double add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
+                                Eigen::VectorXd& g) override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
 

@@ -403,10 +403,7 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
     external += flex->external_power(q, qd, t);
   }
   // contacts of [[contact]] (an empty list without them)
-  for (auto& contact : model_.contacts) {
-    contact->add_forces(q, qd, t, g_);
-    dissipated += contact->dissipation_power(q, qd);
-  }
+  for (auto& contact : model_.contacts) dissipated += contact->add_forces_dissipating(q, qd, t, g_);
   if (mouse_) {
     const Vec2 target = mouse_->target_at(t);
     if (mouse_->point.body >= 0) {

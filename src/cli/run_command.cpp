@@ -183,7 +183,8 @@ int run_command(const RunOptions& requested) {
   };
   const double worker_cpu_start = omp_worker_cpu_seconds();
   try {
-    series = std::make_unique<SeriesWriter>(out_dir + "/series.csv", sim.probe_columns(), has_particles);
+    series = std::make_unique<SeriesWriter>(out_dir + "/series.csv", sim.probe_columns(), has_particles,
+                                            !sim.scene().contacts.empty());
     // rendering and VTK output are optional; the sink checks its own preconditions first
     if (options.render || options.snapshot_at) {
       sim.fill_snapshot(snapshot);

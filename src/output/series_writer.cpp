@@ -12,13 +12,16 @@
 namespace periflex {
 
 SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns,
-                           bool with_damage)
-    : path_(path), with_damage_(with_damage) {
+                           bool with_damage, bool with_contact)
+    : path_(path), with_damage_(with_damage), with_contact_(with_contact) {
   columns_ = {"t",           "kinetic",     "potential_gravity", "potential_elastic", "dissipated",
               "fracture",    "external_work", "driver_work",     "energy_balance",    "violation_position",
               "violation_velocity"};
   if (with_damage_) {
     for (const char* c : {"broken_bonds", "mean_damage", "max_damage"}) columns_.push_back(c);
+  }
+  if (with_contact_) {
+    for (const char* c : {"contact_force_total", "contact_count"}) columns_.push_back(c);
   }
   columns_.insert(columns_.end(), probe_columns.begin(), probe_columns.end());
 
@@ -55,6 +58,10 @@ bool SeriesWriter::write(const Sample& s) {
     values.push_back(static_cast<double>(s.broken_bonds));
     values.push_back(s.mean_damage);
     values.push_back(s.max_damage);
+  }
+  if (with_contact_) {
+    values.push_back(s.contact_force_total);
+    values.push_back(static_cast<double>(s.contact_count));
   }
   values.insert(values.end(), s.probe_values.begin(), s.probe_values.end());
   for (double v : values) {

@@ -12,8 +12,10 @@ namespace periflex {
 
 class SeriesWriter {
  public:
-  // Opens `path` and writes the header. Damage columns only when the scene has particles.
-  SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns, bool with_damage);
+  // Opens `path` and writes the header. Damage columns only when the scene has particles,
+  // contact columns (contact_force_total, contact_count) only when it declares [[contact]].
+  SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns, bool with_damage,
+               bool with_contact = false);
   ~SeriesWriter();
   SeriesWriter(const SeriesWriter&) = delete;
   SeriesWriter& operator=(const SeriesWriter&) = delete;
@@ -30,7 +32,7 @@ class SeriesWriter {
   int fd_ = -1;
   std::string path_;
   std::vector<std::string> columns_;
-  bool with_damage_ = false;
+  bool with_damage_ = false, with_contact_ = false;
   long rows_ = 0;
   std::string line_;
 };

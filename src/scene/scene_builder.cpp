@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "scene/contact_reader.h"
 #include "scene/function_reader.h"
 #include "scene/scene_loader.h"
 #include "scene/shape_reader.h"
@@ -57,6 +58,7 @@ class SceneBuilder {
     for (const auto& [table, index] : elements("probe")) scene_.probes.push_back(read_probe(*table, index));
     for (const auto& [table, index] : elements("attachment"))
       scene_.attachments.push_back(read_attachment(*table, index));
+    for (const auto& [table, index] : elements("contact")) scene_.contacts.push_back(read_contact(*table, index));
     top_.finish();
 
     // a scene needs something that moves
@@ -642,11 +644,35 @@ class SceneBuilder {
     return attachment;
   }
 
+  // ---------------------------------------------------------------------------
+  // [[contact]] (the law is read in contact_reader.cpp)
+
+  ContactDef read_contact(const toml::table& table, size_t index) {
+    ContactDef contact;
+    contact.name = element_name(table, "contact", index, contact_names_);
+    TableReader in(context_, table, "contact." + contact.name, "[[contact]] '" + contact.name + "'");
+    in.node("name");
+    contact.where = in.where();
+    contact.kind = read_contact_kind(in);
+    if (contact.kind == ContactDef::Kind::kRigidParticles) {
+      // the rigid body's drawing shapes are its contact shapes
+      contact.body = rigid_reference(in, "body", false);
+      const auto body = std::find_if(scene_.bodies.begin(), scene_.bodies.end(),
+                                     [&](const BodyDef& b) { return b.name == contact.body; });
+      if (body->shapes.empty())
+        in.fail("body", "body '" + contact.body + "' has no shape to touch; give it a shape (its drawing shape is "
+                        "its contact shape)");
+    }
+    read_contact_law(in, flex_names_, contact);
+    return contact;
+  }
+
   const ReadContext& context_;
   TableReader top_;
   SceneDef scene_;
   std::set<std::string> rigid_names_, flex_names_;
-  std::map<std::string, int> body_names_, joint_names_, driver_names_, force_names_, probe_names_, attachment_names_;
+  std::map<std::string, int> body_names_, joint_names_, driver_names_, force_names_, probe_names_, attachment_names_,
+      contact_names_;
 };
 
 }  // namespace

@@ -11,6 +11,7 @@
 //   ProbeDef        points written to series.csv
 //   FlexBodyDef     peridynamic bodies (material, grid, fracture, damping, BCs)
 //   AttachmentDef   rigid-flexible joints between a virtual body and particles
+//   ContactDef      contact between rigid shapes and particles (scene/contact_def.h)
 //   SolverDef       integrator, time step, correction, output cadence
 //   LimitsDef       budgets of particles, memory, steps, rows, frames and threads
 //   SceneDef        all of the above
@@ -24,6 +25,7 @@
 #include "core/error.h"
 #include "core/time_function.h"
 #include "core/vec2.h"
+#include "scene/contact_def.h"
 
 namespace periflex {
 
@@ -253,6 +255,7 @@ struct SceneDef {
   std::vector<ProbeDef> probes;
   std::vector<FlexBodyDef> flex_bodies;
   std::vector<AttachmentDef> attachments;
+  std::vector<ContactDef> contacts;  // [[contact]] (scene/contact_def.h)
   LimitsDef limits;
   // Where single values came from, by dotted key ("solver.dt", "limits.max_memory"): the file
   // position, --set, or the command-line flag that replaced them. Checks that relate values to

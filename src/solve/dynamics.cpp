@@ -621,6 +621,8 @@ void Dynamics::derivative(double t, const Eigen::VectorXd& q_in, const Eigen::Ve
     if (flex->bond_damping() != 0.0 || flex->global_damping() != 0.0) dissipated += flex->dissipation_power(q, qd);
     external += flex->external_power(q, qd, t);
   }
+  // contacts of [[contact]] (an empty list without them)
+  for (auto& contact : model_.contacts) dissipated += contact->add_forces_dissipating(q, qd, t, g_);
   if (!held_.empty()) check_held_rotations(model_, held_, g_, t);
   if (mouse_) {
     const Vec2 target = mouse_->target_at(t);

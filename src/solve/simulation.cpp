@@ -108,6 +108,10 @@ struct Simulation::Impl {
     for (auto& flex : model->flex_bodies) flex->set_break_timing(timing);
   }
 
+  // Throws InputError at the contact whose stiffness lowers the critical step below solver.dt
+  // when the bonds alone would allow it (without auto_substep).
+  void check_contact_steps() const;
+
   // --- stepping -----------------------------------------------------------------------
   void initialize();
   // one step from `time` to exactly t_end (h = t_end - time, split into sub-steps if needed)
@@ -122,6 +126,7 @@ struct Simulation::Impl {
     double e = 0.0;
     for (const auto& f : model->forces) e += f->potential_energy(state.q);
     for (const auto& flex : model->flex_bodies) e += flex->potential_energy(state.q);
+    for (const auto& contact : model->contacts) e += contact->potential_energy(state.q);
     return e;
   }
   double gravity_energy() const { return -model->gravity_force.dot(state.q); }
@@ -145,6 +150,11 @@ void Simulation::Impl::build_info() {
     info.particles += flex->particle_count();
     info.bonds += flex->bond_count();
     const double crit = flex->critical_time_step();
+    if (crit > 0.0) critical_step = critical_step > 0.0 ? std::min(critical_step, crit) : crit;
+  }
+  // a contact's stiffness adds to the bonds' on the particles it touches
+  for (const auto& contact : m.contacts) {
+    const double crit = contact->critical_time_step();
     if (crit > 0.0) critical_step = critical_step > 0.0 ? std::min(critical_step, crit) : crit;
   }
   info.coordinates = m.coordinate_count;
@@ -175,6 +185,7 @@ void Simulation::Impl::build_info() {
   if (global_damping) mods.push_back("pd_global_damping");
   if (m.attachments > 0) mods.push_back("rigid_flexible_joints");
   if (!m.prescribed.empty()) mods.push_back("prescribed_motion");
+  if (!m.contacts.empty()) mods.push_back("contact");
 
   // foreseeable trouble
   auto& w = info.warnings;
@@ -184,6 +195,13 @@ void Simulation::Impl::build_info() {
                 (scene.solver.auto_substep ? "; each step is split into " +
                                                  std::to_string(substeps_for(scene.solver.dt)) + " sub-steps"
                                            : "; lower solver.dt or set solver.auto_substep = true"));
+  }
+  // bodies that start inside each other are pushed apart at once, with the full penalty force
+  for (const auto& contact : m.contacts) {
+    const long overlapping = contact->totals(m.q0, m.qd0).active;
+    if (overlapping > 0)
+      w.push_back("contact '" + contact->name() + "': " + std::to_string(overlapping) +
+                  " contact(s) active at t = 0: the bodies start overlapping and are pushed apart at once");
   }
   for (size_t k = 0; k < m.flex_bodies.size(); ++k) {
     const PdBody& flex = *m.flex_bodies[k];
@@ -204,6 +222,28 @@ void Simulation::Impl::build_info() {
   }
 }
 
+void Simulation::Impl::check_contact_steps() const {
+  if (!stability_bound_applies() || scene.solver.auto_substep) return;
+  const double safety = scene.solver.dt_safety;
+  for (const auto& contact : model->contacts) {
+    const double with = contact->critical_time_step(), without = contact->bond_critical_time_step();
+    if (!(live.dt > safety * with) || live.dt > safety * without) continue;
+    const ContactDef& def = contact->def();
+    SourceLocation where = def.stiffness_where.line > 0 ? def.stiffness_where : def.where;
+    where.key = "contact." + def.name + ".stiffness";
+    // the stiffness at which this dt is the bound: 1/dt^2 = 1/dt_bonds^2 + k / (k_now dt_contact^2)
+    const double room = 1.0 / (live.dt * live.dt / (safety * safety)) - 1.0 / (without * without);
+    const double contact_part = 1.0 / (with * with) - 1.0 / (without * without);
+    const double stable = contact->stiffness() * room / contact_part;
+    throw InputError(where, "contact stiffness " + number(contact->stiffness()) + " N/m lowers the critical step to " +
+                                number(with) + " s, and solver.dt = " + number(live.dt) + " s is above dt_safety * " +
+                                number(with) + " = " + number(safety * with) + " s of the explicit " +
+                                integrator->name() + " integrator; lower the stiffness below about " +
+                                number(stable) + " N/m, lower solver.dt below " + number(safety * with) +
+                                " s or set solver.auto_substep = true");
+  }
+}
+
 void Simulation::Impl::initialize() {
   state.q = model->q0;
   state.qd = model->qd0;
@@ -214,6 +254,8 @@ void Simulation::Impl::initialize() {
   fracture_energy = 0.0;
   dynamics->impose_prescribed(0.0, state.q, state.qd);
 
+  // a contact stiffness that alone makes the step unstable is bad input: name it
+  check_contact_steps();
   // explicit integration of particles is bounded by their critical step: a step the input chose
   // above it is bad input, named where it was set (scene line, --set or --dt); a step changed
   // while running (the GUI's live settings) is a numerical stop
@@ -607,6 +649,11 @@ Sample Simulation::sample() const {
     count += static_cast<long>(damage.size());
   }
   out.mean_damage = count ? sum / count : 0.0;
+  for (const auto& contact : s.model->contacts) {
+    const ContactTotals totals = contact->totals(s.state.q, s.state.qd);
+    out.contact_force_total += totals.normal_force;
+    out.contact_count += totals.active;
+  }
   for (const auto& p : s.model->probes) {
     if (p.is_particle()) {
       const int c = p.particle_coordinate;

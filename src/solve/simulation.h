@@ -44,6 +44,9 @@ struct Sample {
   long broken_bonds = 0;
   double mean_damage = 0.0, max_damage = 0.0;
   std::vector<double> probe_values; // matches Simulation::probe_columns()
+  // [[contact]]: sum of the normal force magnitudes [N] and the contacts active (0 without contacts)
+  double contact_force_total = 0.0;
+  long contact_count = 0;
 };
 
 // Everything the GUI can change while running; applied between steps.

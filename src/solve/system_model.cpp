@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "contact/contact_factory.h"
 #include "core/error.h"
 #include "mbs/force_factory.h"
 #include "mbs/joint_factory.h"
@@ -157,6 +158,9 @@ std::unique_ptr<SystemModel> build_system_model(const SceneDef& scene) {
   }
   m.is_prescribed.assign(m.coordinate_count, 0);
   for (const auto& p : m.prescribed) m.is_prescribed[p.coordinate] = 1;
+
+  // contacts, once bodies, particles and attachments exist
+  build_contacts(scene, m);
 
   // size of the initial configuration: bounding box of body origins, joint points and particles
   Vec2 lo(1e300, 1e300), hi(-1e300, -1e300);

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "contact/contact_element.h"
 #include "mbs/body_point.h"
 #include "mbs/constraint.h"
 #include "mbs/force_element.h"
@@ -59,6 +60,9 @@ struct SystemModel {
   std::vector<std::unique_ptr<PdBody>> flex_bodies;
   std::vector<PrescribedCoordinate> prescribed;
   std::vector<char> is_prescribed;       // per coordinate
+
+  // contacts of [[contact]] (src/contact/); empty, and never visited, without them
+  std::vector<std::unique_ptr<ContactElement>> contacts;
 
   std::vector<ProbePoint> probes;
   std::vector<MarkerSource> markers;

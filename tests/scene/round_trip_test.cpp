@@ -234,6 +234,26 @@ name = "grip"
 body = "hub"
 flex_body = "plate"
 region = { type = "box", center = [-0.048, 0], width = 0.004, height = 0.04 }
+
+[[contact]]
+name = "strike"
+type = "rigid_particles"
+body = "crank"
+flex_body = "plate"
+stiffness = 2e6
+restitution = 0.5
+friction = 0.3
+friction_velocity = 0.01
+margin = 0.002
+
+[[contact]]
+name = "faces"
+type = "particles"
+flex_bodies = ["plate", "tab"]
+stiffness = 3e5
+restitution = 0.9
+distance_ratio = 0.8
+skin_ratio = 0.3
 )toml";
 
 void expect_vec(const Vec2& v, double x, double y) {
@@ -427,6 +447,29 @@ TEST_F(RoundTrip, ProbesAndAttachments) {
   expect_vec(grip.region.center, -0.048, 0.0);
   EXPECT_DOUBLE_EQ(grip.region.width, 0.004);
   EXPECT_DOUBLE_EQ(grip.region.height, 0.04);
+}
+
+TEST_F(RoundTrip, Contacts) {
+  ASSERT_EQ(scene.contacts.size(), 2u);
+  const ContactDef& strike = scene.contacts[0];
+  EXPECT_EQ(strike.name, "strike");
+  EXPECT_EQ(strike.kind, ContactDef::Kind::kRigidParticles);
+  EXPECT_EQ(strike.body, "crank");
+  ASSERT_EQ(strike.flex_bodies.size(), 1u);
+  EXPECT_EQ(strike.flex_bodies[0], "plate");
+  EXPECT_DOUBLE_EQ(strike.stiffness, 2e6);
+  EXPECT_DOUBLE_EQ(strike.restitution, 0.5);
+  EXPECT_DOUBLE_EQ(strike.friction, 0.3);
+  EXPECT_DOUBLE_EQ(strike.friction_velocity, 0.01);
+  EXPECT_DOUBLE_EQ(strike.margin, 0.002);
+  const ContactDef& faces = scene.contacts[1];
+  EXPECT_EQ(faces.kind, ContactDef::Kind::kParticles);
+  ASSERT_EQ(faces.flex_bodies.size(), 2u);
+  EXPECT_EQ(faces.flex_bodies[1], "tab");
+  EXPECT_DOUBLE_EQ(faces.stiffness, 3e5);
+  EXPECT_DOUBLE_EQ(faces.restitution, 0.9);
+  EXPECT_DOUBLE_EQ(faces.distance_ratio, 0.8);
+  EXPECT_DOUBLE_EQ(faces.skin_ratio, 0.3);
 }
 
 TEST_F(RoundTrip, FlexibleBody) {

@@ -1,0 +1,165 @@
+#include "contact/particle_contact.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "contact/contact_stiffness.h"
+
+namespace periflex {
+
+namespace {
+// Particles per chunk of the parallel passes.
+constexpr int kChunkParticles = 2048;
+// Contacts assumed on the lightest particle for the critical step: about two neighbours across
+// a contact face, each in relative motion (twice the stiffness of a fixed wall).
+constexpr double kContactsPerParticle = 4.0;
+}  // namespace
+
+ParticleContact::ParticleContact(const ContactDef& def, const std::vector<const PdBody*>& bodies)
+    : def_(def), bodies_(bodies) {
+  double spacing = 0.0, inverse_stiffness = 0.0;
+  bond_step_ = 0.0;
+  for (size_t b = 0; b < bodies_.size(); ++b) {
+    const PdBody& body = *bodies_[b];
+    for (int i = 0; i < body.particle_count(); ++i) {
+      coordinate_.push_back(body.coordinate_offset() + 2 * i);
+      body_of_.push_back(static_cast<int>(b));
+      local_.push_back(i);
+      mass_.push_back(body.masses()[i]);
+    }
+    spacing += body.grid_spacing() / static_cast<double>(bodies_.size());
+    inverse_stiffness += 1.0 / default_contact_stiffness(body) / static_cast<double>(bodies_.size());
+    const double step = body.critical_time_step();
+    bond_step_ = b == 0 ? step : std::min(bond_step_, step);
+  }
+  // one law for every pair: the declared stiffness, else the harmonic mean of the bodies' defaults
+  stiffness_ = def.stiffness > 0.0 ? def.stiffness : 1.0 / inverse_stiffness;
+  distance_ = def.distance_ratio * spacing;
+  skin_ = def.skin_ratio * spacing;
+  zeta_ = damping_ratio(def.restitution);
+  lightest_ = mass_.empty() ? 0.0 : *std::min_element(mass_.begin(), mass_.end());
+}
+
+bool ParticleContact::bonded(int a, int b) const {
+  if (body_of_[a] != body_of_[b]) return false;
+  const BondStore& bonds = bodies_[body_of_[a]]->bonds();
+  const int i = local_[a], j = local_[b];
+  for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) {
+    if (bonds.neighbor[k] == j) return !bonds.broken[k];
+  }
+  return false;
+}
+
+void ParticleContact::refresh(const Eigen::VectorXd& q) const {
+  const int n = static_cast<int>(coordinate_.size());
+  long broken = 0;
+  for (const PdBody* body : bodies_) broken += body->broken_bond_count();
+  bool stale = built_broken_ != broken || static_cast<int>(built_at_.size()) != 2 * n;
+  // a particle that moved half the skin may have a new partner within d
+  const double limit2 = 0.25 * skin_ * skin_;
+  for (int a = 0; a < n && !stale; ++a) {
+    const double dx = q[coordinate_[a]] - built_at_[2 * a], dy = q[coordinate_[a] + 1] - built_at_[2 * a + 1];
+    stale = dx * dx + dy * dy > limit2;
+  }
+  if (!stale) return;
+
+  // every pair within d + skin, less the pairs an intact bond joins
+  x_.resize(n);
+  y_.resize(n);
+  built_at_.resize(2 * n);
+  for (int a = 0; a < n; ++a) {
+    x_[a] = built_at_[2 * a] = q[coordinate_[a]];
+    y_[a] = built_at_[2 * a + 1] = q[coordinate_[a] + 1];
+  }
+  NeighborList all = find_neighbors(x_, y_, distance_ + skin_);
+  candidates_.row.assign(n + 1, 0);
+  candidates_.col.clear();
+  for (int a = 0; a < n; ++a) {
+    for (int64_t k = all.row[a]; k < all.row[a + 1]; ++k) {
+      if (!bonded(a, all.col[k])) candidates_.col.push_back(all.col[k]);
+    }
+    candidates_.row[a + 1] = static_cast<int64_t>(candidates_.col.size());
+  }
+  built_broken_ = broken;
+  ++rebuilds_;
+}
+
+ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
+                                             Eigen::VectorXd* g) const {
+  refresh(q);
+  const int n = static_cast<int>(coordinate_.size());
+  const int chunks = (n + kChunkParticles - 1) / kChunkParticles;
+  const double k = stiffness_, d = distance_;
+  std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
+  for (int c = 0; c < chunks; ++c) {
+    Sums& s = partial[c];
+    const int end = std::min(n, (c + 1) * kChunkParticles);
+    for (int a = c * kChunkParticles; a < end; ++a) {
+      const int xa = coordinate_[a];
+      double fx = 0.0, fy = 0.0;
+      for (int64_t e = candidates_.row[a]; e < candidates_.row[a + 1]; ++e) {
+        const int b = candidates_.col[e], xb = coordinate_[b];
+        const double dx = q[xb] - q[xa], dy = q[xb + 1] - q[xa + 1];
+        const double r2 = dx * dx + dy * dy;
+        if (r2 >= d * d || r2 == 0.0) continue;
+        const double r = std::sqrt(r2), overlap = d - r;
+        // overlap rate: minus the rate the pair separates at
+        double overlap_rate = 0.0;
+        if (qd) overlap_rate = -(((*qd)[xb] - (*qd)[xa]) * dx + ((*qd)[xb + 1] - (*qd)[xa + 1]) * dy) / r;
+        const double m_eff = mass_[a] * mass_[b] / (mass_[a] + mass_[b]);
+        const double f = std::max(0.0, k * overlap + 2.0 * zeta_ * std::sqrt(k * m_eff) * overlap_rate);
+        // pushed away from b
+        fx -= f * dx / r;
+        fy -= f * dy / r;
+        if (a < b) {
+          ++s.active;
+          s.energy += 0.5 * k * overlap * overlap;
+          s.normal_force += f;
+          s.dissipation += (f - k * overlap) * overlap_rate;
+        }
+      }
+      if (g) {
+        (*g)[xa] += fx;
+        (*g)[xa + 1] += fy;
+      }
+    }
+  }
+  Sums total;
+  for (const Sums& s : partial) {
+    total.energy += s.energy;
+    total.dissipation += s.dissipation;
+    total.normal_force += s.normal_force;
+    total.active += s.active;
+  }
+  return total;
+}
+
+void ParticleContact::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double, Eigen::VectorXd& g) {
+  sweep(q, &qd, &g);
+}
+
+double ParticleContact::add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double,
+                                              Eigen::VectorXd& g) {
+  return sweep(q, &qd, &g).dissipation;
+}
+
+double ParticleContact::potential_energy(const Eigen::VectorXd& q) const { return sweep(q, nullptr, nullptr).energy; }
+
+double ParticleContact::dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
+  if (zeta_ == 0.0) return 0.0;
+  return sweep(q, &qd, nullptr).dissipation;
+}
+
+ContactTotals ParticleContact::totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  const Sums s = sweep(q, &qd, nullptr);
+  return {s.normal_force, s.active};
+}
+
+double ParticleContact::critical_time_step() const {
+  const double contact = damped_step(std::sqrt(2.0 * lightest_ / (kContactsPerParticle * stiffness_)), zeta_);
+  const double bonds = bond_step_ > 0.0 && std::isfinite(bond_step_) ? 1.0 / (bond_step_ * bond_step_) : 0.0;
+  return 1.0 / std::sqrt(bonds + 1.0 / (contact * contact));
+}
+
+}  // namespace periflex

@@ -1,0 +1,75 @@
+// Short-range repulsion between particles (Silling & Askari 2005; LAMMPS's peri pair styles):
+// two particles of the listed flexible bodies that are not joined by an intact bond and come
+// closer than d = distance_ratio * dx (the mean grid spacing of their bodies) repel with
+//   F = max(0, k (d - r) + c (d - r)_dot)   along the line between them,
+// k = 15 c V_i V_j / delta from the micromodulus unless given, c from the coefficient of
+// restitution with the pair's reduced mass. So crack faces that close and fragments, of one
+// body or of two, push apart instead of passing through each other.
+//
+// Candidate pairs come from the bodies' cell-grid neighbour search (pd/neighbor_search.h)
+// with radius d + skin, kept until a particle has moved half the skin or a bond has broken
+// (a Verlet list). Each particle gathers its own force from its row of candidates, and both
+// rows of a pair compute bit-identical, opposite forces: the same result on any thread count
+// and momentum conserved to round-off.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "contact/contact_element.h"
+#include "pd/neighbor_search.h"
+#include "pd/pd_body.h"
+
+namespace periflex {
+
+class ParticleContact final : public ContactElement {
+ public:
+  ParticleContact(const ContactDef& def, const std::vector<const PdBody*>& bodies);
+
+  const std::string& name() const override { return def_.name; }
+  void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
+  double add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
+                                Eigen::VectorXd& g) override;
+  double potential_energy(const Eigen::VectorXd& q) const override;
+  double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+
+  ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
+  double critical_time_step() const override;
+  double bond_critical_time_step() const override { return bond_step_; }
+  double stiffness() const override { return stiffness_; }
+  const ContactDef& def() const override { return def_; }
+
+  // Times the candidate list was built (the first build included), for tests.
+  long rebuilds() const { return rebuilds_; }
+
+ private:
+  struct Sums {
+    double energy = 0.0, dissipation = 0.0, normal_force = 0.0;
+    long active = 0;
+  };
+  // Rebuilds the candidate pairs when a particle has moved half the skin since the last build
+  // or a bond has broken since then.
+  void refresh(const Eigen::VectorXd& q) const;
+  // Whether particles a and b (global numbering) are joined by an intact bond.
+  bool bonded(int a, int b) const;
+  // One pass at q (and qd when given): forces into g when given, and the sums over pairs.
+  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const;
+
+  ContactDef def_;
+  std::vector<const PdBody*> bodies_;
+  // particles of all listed bodies, numbered body after body
+  std::vector<int> coordinate_, body_of_, local_;
+  std::vector<double> mass_;
+  double distance_ = 0.0, skin_ = 0.0, stiffness_ = 0.0, zeta_ = 0.0;
+  double bond_step_ = 0.0, lightest_ = 0.0;
+
+  // the Verlet list and the state it was built at
+  mutable NeighborList candidates_;
+  mutable std::vector<double> built_at_;  // x, y per particle
+  mutable long built_broken_ = -1;
+  mutable long rebuilds_ = 0;
+  mutable std::vector<double> x_, y_;
+};
+
+}  // namespace periflex

@@ -1,0 +1,156 @@
+#include "contact/rigid_particle_contact.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "contact/contact_stiffness.h"
+#include "contact/shape_distance.h"
+
+namespace periflex {
+
+namespace {
+// Particles per chunk of the parallel pass.
+constexpr int kChunkParticles = 2048;
+}  // namespace
+
+RigidParticleContact::RigidParticleContact(const ContactDef& def, int body, double body_mass,
+                                           std::vector<ShapeDef> shapes, const PdBody& flex,
+                                           const std::vector<int>& excluded)
+    : def_(def),
+      body_(body),
+      body_mass_(body_mass),
+      shapes_(std::move(shapes)),
+      offset_(flex.coordinate_offset()),
+      mass_(flex.masses()) {
+  for (const ShapeDef& shape : shapes_) {
+    Vec2 centre;
+    double radius;
+    bounding_circle(shape, centre, radius);
+    bound_centre_.push_back(centre);
+    bound_radius_.push_back(radius);
+  }
+  excluded_.assign(mass_.size(), 0);
+  for (int i : excluded) excluded_[i] = 1;
+  stiffness_ = def.stiffness > 0.0 ? def.stiffness : default_contact_stiffness(flex);
+  margin_ = def.margin >= 0.0 ? def.margin : 0.5 * flex.grid_spacing();
+  zeta_ = damping_ratio(def.restitution);
+  bond_step_ = flex.critical_time_step();
+  lightest_ = mass_.empty() ? 0.0 : *std::min_element(mass_.begin(), mass_.end());
+}
+
+RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
+                                                       Eigen::VectorXd* g) const {
+  const Vec2 r(q[3 * body_], q[3 * body_ + 1]);
+  const double phi = q[3 * body_ + 2];
+  const Mat2 a = rotation(phi), a_t = a.transpose();
+  const Vec2 r_dot = qd ? Vec2((*qd)[3 * body_], (*qd)[3 * body_ + 1]) : Vec2::Zero();
+  const double omega = qd ? (*qd)[3 * body_ + 2] : 0.0;
+  const double k = stiffness_, mu = def_.friction, v_reg = def_.friction_velocity;
+
+  const int n = static_cast<int>(mass_.size());
+  const int chunks = (n + kChunkParticles - 1) / kChunkParticles;
+  std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
+  for (int c = 0; c < chunks; ++c) {
+    Sums& s = partial[c];
+    const int end = std::min(n, (c + 1) * kChunkParticles);
+    for (int i = c * kChunkParticles; i < end; ++i) {
+      if (excluded_[i]) continue;
+      const int x = offset_ + 2 * i;
+      const Vec2 p(q[x], q[x + 1]);
+      const Vec2 local = a_t * (p - r);
+      // the deepest penetration over the body's shapes (bounding circles first)
+      double depth = 0.0;
+      Vec2 normal = Vec2::UnitX();
+      for (size_t k_shape = 0; k_shape < shapes_.size(); ++k_shape) {
+        if ((local - bound_centre_[k_shape]).squaredNorm() >
+            (bound_radius_[k_shape] + margin_) * (bound_radius_[k_shape] + margin_))
+          continue;
+        const ShapeDistance d = signed_distance(shapes_[k_shape], local);
+        if (margin_ - d.distance > depth) {
+          depth = margin_ - d.distance;
+          normal = a * d.normal;
+        }
+      }
+      if (depth <= 0.0) continue;
+      ++s.active;
+      s.energy += 0.5 * k * depth * depth;
+
+      // relative velocity of the particle and the body point it touches
+      Vec2 v_rel = Vec2::Zero();
+      if (qd) v_rel = Vec2((*qd)[x], (*qd)[x + 1]) - (r_dot + perp(p - r) * omega);
+      const double depth_rate = -normal.dot(v_rel);
+      const double m_eff = body_mass_ > 0.0 ? mass_[i] * body_mass_ / (mass_[i] + body_mass_) : mass_[i];
+      const double damping = 2.0 * zeta_ * std::sqrt(k * m_eff);
+      // no pull: the dashpot may only lower the push to zero
+      const double f_n = std::max(0.0, k * depth + damping * depth_rate);
+      s.normal_force += f_n;
+      s.dissipation += (f_n - k * depth) * depth_rate;
+      Vec2 force = f_n * normal;
+      if (mu > 0.0 && qd) {
+        const Vec2 v_t = v_rel - normal.dot(v_rel) * normal;
+        const Vec2 f_t = -mu * f_n / std::max(v_t.norm(), v_reg) * v_t;
+        s.dissipation -= f_t.dot(v_t);
+        force += f_t;
+      }
+      if (g) {
+        (*g)[x] += force.x();
+        (*g)[x + 1] += force.y();
+      }
+      // the body gets -F at the particle
+      s.fx -= force.x();
+      s.fy -= force.y();
+      s.moment -= cross(p - r, force);
+    }
+  }
+  Sums total;
+  for (const Sums& s : partial) {
+    total.fx += s.fx;
+    total.fy += s.fy;
+    total.moment += s.moment;
+    total.energy += s.energy;
+    total.dissipation += s.dissipation;
+    total.normal_force += s.normal_force;
+    total.active += s.active;
+  }
+  if (g) {
+    (*g)[3 * body_] += total.fx;
+    (*g)[3 * body_ + 1] += total.fy;
+    (*g)[3 * body_ + 2] += total.moment;
+  }
+  return total;
+}
+
+void RigidParticleContact::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double,
+                                      Eigen::VectorXd& g) {
+  sweep(q, &qd, &g);
+}
+
+double RigidParticleContact::add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double,
+                                                   Eigen::VectorXd& g) {
+  return sweep(q, &qd, &g).dissipation;
+}
+
+double RigidParticleContact::potential_energy(const Eigen::VectorXd& q) const {
+  return sweep(q, nullptr, nullptr).energy;
+}
+
+double RigidParticleContact::dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
+  if (zeta_ == 0.0 && def_.friction == 0.0) return 0.0;
+  return sweep(q, &qd, nullptr).dissipation;
+}
+
+ContactTotals RigidParticleContact::totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
+  const Sums s = sweep(q, &qd, nullptr);
+  return {s.normal_force, s.active};
+}
+
+double RigidParticleContact::critical_time_step() const {
+  // one contact per particle, on the lightest particle, added to its bond stiffness
+  const double contact = damped_step(std::sqrt(2.0 * lightest_ / stiffness_), zeta_);
+  const double bonds = bond_step_ > 0.0 && std::isfinite(bond_step_) ? 1.0 / (bond_step_ * bond_step_) : 0.0;
+  return 1.0 / std::sqrt(bonds + 1.0 / (contact * contact));
+}
+
+}  // namespace periflex

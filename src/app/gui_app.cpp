@@ -37,6 +37,13 @@ double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// a magnification as the log writes it: "100", "0.5"
+std::string format_deform(float factor) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(factor));
+  return text;
+}
+
 
 }  // namespace
 
@@ -45,6 +52,7 @@ GuiApp::GuiApp(const GuiOptions& options, std::vector<ScriptAction> script, Even
     : options_(options), script_(std::move(script)), log_(log), worker_(worker), window_(window),
       resource_root_(resource_root) {
   renderer_ = std::make_unique<Renderer>(resource_root_);
+  render_.deform = static_cast<float>(options_.deform < 0.0 ? kAutoDeform : options_.deform);
   scenes_ = list_scenes();
 }
 
@@ -328,6 +336,18 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       log_.add("fit view (key)");
     }
     if (k.key == GLFW_KEY_S && !ctrl) pending_screenshot_ = default_screenshot_name();
+    // D: the undeformed shape, and back to the magnification before
+    if (k.key == GLFW_KEY_D && !ctrl) {
+      if (render_.deform != 0.0f) {
+        deform_before_off_ = render_.deform;
+        render_.deform = 0.0f;
+      } else {
+        render_.deform = deform_before_off_;
+      }
+      log_.add(render_.deform == 0.0f ? std::string("view: deformation x0 (key)")
+               : render_.deform < 0.0f ? std::string("view: deformation auto (key)")
+                                       : "view: deformation x" + format_deform(render_.deform) + " (key)");
+    }
     if (k.key == GLFW_KEY_Q && ctrl) {
       log_.add("quit (key)");
       quit_ = true;
@@ -453,6 +473,8 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   dump_.state("bond_damping", status_.settings.bond_damping);
   dump_.state("dt", status_.settings.dt);
   dump_.state("recording", writer_ ? "1" : "0");
+  dump_.state("deform", renderer_->last_deform());
+  dump_.state("deform_auto", render_.deform < 0.0f ? "1" : "0");
   dump_.state("frames_written", writer_ ? static_cast<double>(writer_->frames_written()) : 0.0);
   int win_w = 1, win_h = 1;
   glfwGetWindowSize(window_, &win_w, &win_h);

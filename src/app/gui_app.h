@@ -25,6 +25,9 @@ struct GLFWwindow;
 
 namespace periflex {
 
+// The deformation slider's largest factor (render/deformation.h: the automatic one stops at 1000).
+constexpr double kMaxDeformSlider = 1000.0;
+
 class GuiApp {
  public:
   GuiApp(const GuiOptions& options, std::vector<ScriptAction> script, EventLog& log, SimWorker& worker,
@@ -56,6 +59,7 @@ class GuiApp {
   void panel_parameters();
   void panel_view();
   void panel_view_controls();
+  void panel_deformation();
   void panel_plots();
   void panel_export();
   void panel_log();
@@ -95,6 +99,7 @@ class GuiApp {
   bool auto_frame_ = false;         // the view grows with the scene until the user moves it
   Framing framing_;                 // what the view frames while auto_frame_
   int follow_ = -1;                 // geometry body index, -1: none
+  float deform_before_off_ = kAutoDeform;  // the magnification the D key brings back
   PlotHistory history_;
   long seen_generation_ = -1, seen_scene_generation_ = -1;
   LiveSettings edit_;               // the live-parameter panel's copy

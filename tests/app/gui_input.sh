@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_mp4 | keys | damping | refusal | spring
+# CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -293,6 +293,49 @@ case "$case_name" in
     holds "$moved > 5e-4" || fail "moved $moved m: less than half a grid spacing"
     wait_until 10 "the release" '[[ -z "$(state grabbed)" ]]'
     quit
+    ;;
+  deform)
+    # the notched plate bent by its grips, drawn undeformed (--deform 0), then magnified 100
+    # times through the View panel's slider (Ctrl+click types a value), each picture taken with S
+    cd "$work" || fail "cd $work"
+    start notched_plate.toml --deform 0
+    [[ "$(state deform)" == 0 ]] || fail "--deform 0 shows deformation x$(state deform)"
+    wait_until 60 "the grips to bend the plate (t > 0.4 ms)" 'holds "$(state time) > 4e-4"'
+    xdotool mousemove --window "$window" 1200 100
+    tap space
+    wait_until 10 "Space to pause" '[[ "$(state running)" == 0 ]]'
+    shoot() {
+      rm -f periflex_*.png
+      tap s
+      wait_until 20 "the screenshot" 'ls periflex_*.png >/dev/null 2>&1'
+      sleep 0.5
+      mv periflex_*.png "$1"
+    }
+    shoot k0.png
+    # Ctrl+click on the slider, then the factor typed
+    xy=$(centre deform)
+    [[ -n "$xy" ]] || fail "no deformation slider"
+    xdotool mousemove --window "$window" ${xy% *} ${xy#* } && sleep 0.2 &&
+      xdotool keydown ctrl && sleep 0.1 && xdotool click 1 && sleep 0.1 && xdotool keyup ctrl ||
+      fail "xdotool ctrl+click"
+    sleep 0.3
+    retype 100
+    field_key Return
+    wait_until 10 "the slider at 100" '[[ "$(state deform)" == 100 ]]'
+    [[ "$(state deform_auto)" == 0 ]] || fail "still automatic"
+    grep -q "view: deformation x100 (ui)" "$log" || fail "the change is not in the log"
+    xdotool mousemove --window "$window" 1200 100
+    shoot k100.png
+    # D: undeformed, and back
+    tap d
+    wait_until 10 "D to show the undeformed plate" '[[ "$(state deform)" == 0 ]]'
+    tap d
+    wait_until 10 "D again to bring back x100" '[[ "$(state deform)" == 100 ]]'
+    quit
+    if [[ -n "$png_check" ]]; then
+      "$png_check" k0.png --lower-edge-spread 0 3 || fail "the undeformed plate's lower edge is not flat"
+      "$png_check" k100.png --lower-edge-spread 20 1000 || fail "the magnified plate's lower edge does not bend"
+    fi
     ;;
   *)
     fail "unknown case"

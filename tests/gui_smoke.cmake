@@ -143,8 +143,9 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   endif()
 
   # real input: recording from the Export panel (PNG folder, MP4), the keys, a live setting
-  # typed into its field, the mouse spring on the notched plate, the deformation slider and key
-  foreach(case record_png record_mp4 keys damping refusal spring deform)
+  # typed into its field, the mouse spring on the notched plate, the deformation slider and key,
+  # the teaching aids (F1 list, description, pace, reload of a scene file saved on disk)
+  foreach(case record_png record_mp4 keys damping refusal spring deform teach)
     gui_input_test(${case})
   endforeach()
 

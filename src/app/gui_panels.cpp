@@ -57,6 +57,9 @@ void GuiApp::draw_panels(int fb_width, int fb_height) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   ImGui::PushItemWidth(150.0f);
   panel_simulation();
+  const bool about_open = ImGui::CollapsingHeader("About this scene");
+  dump_.note_item("description_header");
+  if (about_open) panel_description();
   if (ImGui::CollapsingHeader("Live parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters();
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) panel_view();
   if (ImGui::CollapsingHeader("Plots")) panel_plots();

@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform
+# CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -73,7 +73,9 @@ to_window() {
 start() {
   local scene=$1
   shift
-  PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" gui "$scenes/$scene" "$@" 2>"$log" &
+  # a scene file name is looked for among the shipped scenes, a path taken as it is
+  [[ "$scene" == */* ]] || scene="$scenes/$scene"
+  PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" gui "$scene" "$@" 2>"$log" &
   pid=$!
   wait_until 60 "the window's first frame" '[[ -n "$(state running)" ]]'
   window=$(xdotool search --sync --pid "$pid" 2>/dev/null | head -n 1)
@@ -229,7 +231,7 @@ case "$case_name" in
     field_key Return
     wait_until 10 "bond damping 0.25 applied" 'holds "$(state bond_damping) == 0.25"'
     grep -q "settings: .*(ui)" "$log" || fail "the change is not in the log"
-    [[ "$(state running)" == 1 ]] || fail "the run stopped"
+    [[ "$(state running)" == 1 ]] || fail "the broken file stopped the run"
     quit
     ;;
   refusal)
@@ -336,6 +338,55 @@ case "$case_name" in
       "$png_check" k0.png --lower-edge-spread 0 3 || fail "the undeformed plate's lower edge is not flat"
       "$png_check" k100.png --lower-edge-spread 20 1000 || fail "the magnified plate's lower edge does not bend"
     fi
+    ;;
+  teach)
+    # a copy of the pendulum scene, edited on disk while the window shows it
+    cp "$scenes/pendulum.toml" "$work/scene.toml" || fail "copy of the scene"
+    start "$work/scene.toml" --set solver.end_time=1000
+    xdotool mousemove --window "$window" 1200 300
+    # F1 shows every key and mouse action, F1 again hides them
+    tap F1
+    wait_until 10 "F1 to open the list of keys" '[[ -n "$(centre help_table)" && "$(state help)" == 1 ]]'
+    read -r _ top _ bottom < <(awk '$1 == "widget" && $2 == "help_table" { print $3, $4, $5, $6 }' "$widgets")
+    ((bottom - top > 15 * 12)) || fail "the list of keys is $((bottom - top)) px tall: not 15 rows"
+    tap F1
+    wait_until 10 "F1 to close it" '[[ -z "$(centre help_table)" && "$(state help)" == 0 ]]'
+    # the description panel shows the file's opening comment
+    first=$(awk '/^#/ { sub(/^# ?/, ""); print; exit }' "$work/scene.toml")
+    click description_header
+    wait_until 10 "the description panel" '[[ -n "$(centre description)" ]]'
+    [[ "$(state description)" == "$first" ]] || fail "description '$(state description)', the file says '$first'"
+    # the frame rate and the solver's pace over the picture
+    wait_until 10 "the pace shown" '[[ "$(state performance)" == *fps*steps/s*"x real time"* ]]'
+    holds "$(state fps) > 0" || fail "fps $(state fps)"
+    # a view of one's own (a right-drag pans), kept by the reloads below
+    xdotool mousemove --window "$window" 900 400 mousedown 3 mousemove --window "$window" 960 440 \
+      mousemove --window "$window" 1000 460 mouseup 3 || fail "xdotool right-drag"
+    sleep 0.5
+    view=$(state world_to_window)
+    generation=$(state scene_generation)
+    # saved with a change: reloaded, the view kept
+    sed -i 's/^end_time = .*/end_time = 7.0/' "$work/scene.toml"
+    grep -q '^end_time = 7.0' "$work/scene.toml" || fail "the edit did not take"
+    wait_until 10 "the saved file to be reloaded" '(( $(state scene_generation) > generation ))'
+    [[ "$(state world_to_window)" == "$view" ]] || fail "the reload moved the view"
+    grep -q "changed on disk: reloading" "$log" || fail "the reload is not in the log"
+    # reloaded paused at t = 0, as by the Reload button: run it again
+    wait_until 10 "paused at t = 0 after the reload" '[[ "$(state running)" == 0 ]] && (( $(state step) == 0 ))'
+    tap space
+    wait_until 10 "Space to run the reloaded scene" '[[ "$(state running)" == 1 ]] && (( $(state step) > 0 ))'
+    # saved broken: the error over the picture, naming the file and line; the scene kept
+    generation=$(state scene_generation)
+    echo 'broken = [' >> "$work/scene.toml"
+    wait_until 10 "the error shown over the picture" '[[ -n "$(centre load_error)" ]]'
+    [[ "$(state load_error)" == *scene.toml:* ]] || fail "the error does not name the file: $(state load_error)"
+    (( $(state scene_generation) == generation )) || fail "a broken file replaced the scene"
+    [[ "$(state running)" == 1 ]] || fail "the run stopped"
+    # mended: loaded, the error gone
+    sed -i '$d' "$work/scene.toml"
+    wait_until 10 "the mended file loaded, the error gone" \
+      '(( $(state scene_generation) > generation )) && [[ -z "$(centre load_error)" ]]'
+    quit
     ;;
   *)
     fail "unknown case"

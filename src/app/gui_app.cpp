@@ -600,6 +600,7 @@ int GuiApp::run() {
       draw_panels(fb_width, fb_height);
       if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
       draw_performance(fb_width);
+      inspect_particle(fb_width, fb_height);
       draw_load_error(fb_width);
       help_window(fb_width, fb_height);
       dump_state(fb_width, fb_height);

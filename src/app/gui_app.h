@@ -68,6 +68,8 @@ class GuiApp {
   void draw_performance(int fb_width);
   void watch_scene_file();
   void draw_load_error(int fb_width);
+  // the particle under the pointer (gui_inspect.cpp)
+  void inspect_particle(int fb_width, int fb_height);
   void panel_plots();
   void panel_export();
   void panel_log();

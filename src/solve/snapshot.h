@@ -31,6 +31,7 @@ struct SceneGeometry {
   std::vector<FlexBody> flex_bodies;
   std::vector<uint8_t> particle_attached;  // 1 where a rigid-flexible joint holds the particle
   std::vector<float> reference_x, reference_y;
+  std::vector<uint16_t> bonds_initial;     // bonds of each particle at the start (for inspection)
   Vec2 bounds_min = Vec2::Zero(), bounds_max = Vec2::Zero();  // of the initial configuration
   bool has_particles() const { return !reference_x.empty(); }
 };
@@ -62,6 +63,7 @@ struct Snapshot {
   std::vector<float> speed;        // |v|
   std::vector<float> vx, vy;       // velocity components
   std::vector<float> strain;       // largest bond stretch
+  std::vector<uint16_t> bonds_intact;  // bonds of each particle not broken (of geometry->bonds_initial)
   std::vector<std::pair<int, int>> bond_pairs;  // intact bonds, only for small bodies
 
   struct Marker {

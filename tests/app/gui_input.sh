@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach
+# CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -386,6 +386,40 @@ case "$case_name" in
     sed -i '$d' "$work/scene.toml"
     wait_until 10 "the mended file loaded, the error gone" \
       '(( $(state scene_generation) > generation )) && [[ -z "$(centre load_error)" ]]'
+    quit
+    ;;
+  inspect)
+    # hovering a particle of the notched plate (drawn at true scale) shows what it is doing
+    start notched_plate.toml --deform 1
+    mapping=""
+    wait_until 20 "a steady view" '[[ -n "$mapping" && "$mapping" == "$(state world_to_window)" ]] || { mapping=$(state world_to_window); sleep 0.5; false; }'
+    # the particle within a spacing of world point X Y is the one under the pointer (the
+    # pointer's move has reached the window)
+    near() {
+      state pointed | awk -v X="$1" -v Y="$2" '{ exit !(($2 - X)^2 + ($3 - Y)^2 < 1e-6) }'
+    }
+    # an inner particle of the plate, far from the notch and the grips
+    read -r x y < <(to_window 0.025 0.012)
+    xdotool mousemove --window "$window" "$x" "$y"
+    wait_until 10 "the pointer over (25, 12) mm" 'near 0.025 0.012'
+    wait_until 10 "the inspector over a particle" '[[ -n "$(centre inspector)" && -n "$(state inspected)" ]]'
+    read -r id intact broken < <(state inspected)
+    read -r pointed _ < <(state pointed)
+    [[ "$id" == "$pointed" ]] || fail "inspecting particle $id, the pointer is on $pointed"
+    echo "inner particle $id: $intact intact, $broken broken bonds"
+    ((intact >= 20 && broken == 0)) || fail "inner particle $id: $intact intact, $broken broken bonds"
+    # a particle beside the notch, more than a horizon above the lower edge: the bonds across
+    # the cut are missing or broken
+    read -r x y < <(to_window 0.0005 -0.0145)
+    xdotool mousemove --window "$window" "$x" "$y"
+    wait_until 10 "the pointer beside the notch" 'near 0.0005 -0.0145'
+    wait_until 10 "the inspector beside the notch" '[[ "$(state inspected)" == "$(state pointed | cut -d " " -f 1) "* ]]'
+    read -r id2 intact2 broken2 < <(state inspected)
+    echo "particle $id2 beside the notch: $intact2 intact, $broken2 broken bonds"
+    ((id2 != id && intact2 < intact)) || fail "particle $id2 beside the notch: $intact2 intact bonds, inner one $intact"
+    # away from the plate: no inspector
+    xdotool mousemove --window "$window" 1200 150
+    wait_until 10 "the inspector gone off the plate" '[[ -z "$(centre inspector)" && -z "$(state inspected)" ]]'
     quit
     ;;
   *)

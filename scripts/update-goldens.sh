@@ -5,4 +5,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 cmake --preset release >/dev/null
 cmake --build --preset release --target test_headless
-PERIFLEX_UPDATE_GOLDENS=1 build/tests/test_headless --gtest_filter='ShippedScenes/SceneGolden.*'
+PERIFLEX_UPDATE_GOLDENS=1 build/tests/test_headless --gtest_filter='ShippedScenes/SceneGolden.*:MagnifiedGolden.*'

@@ -17,6 +17,8 @@ struct GuiOptions {
   int width = 1280, height = 800;       // window size in screen coordinates
   // Multisamples of the window (1: off); -1 chooses by the first scene (default_samples).
   int samples = -1;
+  // Deformation magnification K of the flexible bodies (0: undeformed); negative: automatic.
+  double deform = -1.0;
 };
 
 // Opens the window and runs until it is closed (or, with frames > 0, for that many frames).

@@ -16,6 +16,7 @@
 
 #include "app/key_presses.h"
 #include "app/picking.h"
+#include "app/scene_description.h"
 #include "app/view_fit.h"
 #include "core/error.h"
 #include "core/resources.h"
@@ -37,6 +38,13 @@ double wall_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// a magnification as the log writes it: "100", "0.5"
+std::string format_deform(float factor) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", double(factor));
+  return text;
+}
+
 
 }  // namespace
 
@@ -45,6 +53,7 @@ GuiApp::GuiApp(const GuiOptions& options, std::vector<ScriptAction> script, Even
     : options_(options), script_(std::move(script)), log_(log), worker_(worker), window_(window),
       resource_root_(resource_root) {
   renderer_ = std::make_unique<Renderer>(resource_root_);
+  render_.deform = static_cast<float>(options_.deform < 0.0 ? kAutoDeform : options_.deform);
   scenes_ = list_scenes();
 }
 
@@ -109,8 +118,14 @@ void GuiApp::take_snapshot() {
   if (status_.scene_generation != seen_scene_generation_) {
     seen_scene_generation_ = status_.scene_generation;
     glfwSetWindowTitle(window_, ("periflex - " + status_.scene_name).c_str());
-    fit_pending_ = true;
-    follow_ = -1;
+    // a new scene is framed; the same file read again (Reload, or saved on disk) keeps the view
+    if (status_.scene_path != shown_scene_path_) {
+      fit_pending_ = true;
+      follow_ = -1;
+    }
+    shown_scene_path_ = status_.scene_path;
+    description_ = scene_description(status_.scene_path, status_.scene_description);
+    scene_watch_.watch(status_.scene_path, wall_seconds());
     const auto found = std::find(scenes_.begin(), scenes_.end(),
                                  fs::path(status_.scene_path).filename().string());
     scene_choice_ = found == scenes_.end() ? -1 : static_cast<int>(found - scenes_.begin());
@@ -328,6 +343,19 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       log_.add("fit view (key)");
     }
     if (k.key == GLFW_KEY_S && !ctrl) pending_screenshot_ = default_screenshot_name();
+    if (k.key == GLFW_KEY_F1) show_help_ = !show_help_;
+    // D: the undeformed shape, and back to the magnification before
+    if (k.key == GLFW_KEY_D && !ctrl) {
+      if (render_.deform != 0.0f) {
+        deform_before_off_ = render_.deform;
+        render_.deform = 0.0f;
+      } else {
+        render_.deform = deform_before_off_;
+      }
+      log_.add(render_.deform == 0.0f ? std::string("view: deformation x0 (key)")
+               : render_.deform < 0.0f ? std::string("view: deformation auto (key)")
+                                       : "view: deformation x" + format_deform(render_.deform) + " (key)");
+    }
     if (k.key == GLFW_KEY_Q && ctrl) {
       log_.add("quit (key)");
       quit_ = true;
@@ -453,6 +481,13 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   dump_.state("bond_damping", status_.settings.bond_damping);
   dump_.state("dt", status_.settings.dt);
   dump_.state("recording", writer_ ? "1" : "0");
+  dump_.state("deform", renderer_->last_deform());
+  dump_.state("deform_auto", render_.deform < 0.0f ? "1" : "0");
+  dump_.state("help", show_help_ ? "1" : "0");
+  // the description's first line, which a test compares with the scene file's first comment
+  dump_.state("description", description_.substr(0, description_.find('\n')));
+  dump_.state("scene_generation", static_cast<double>(status_.scene_generation));
+  if (!status_.load_error.empty()) dump_.state("load_error", status_.load_error.substr(0, status_.load_error.find('\n')));
   dump_.state("frames_written", writer_ ? static_cast<double>(writer_->frames_written()) : 0.0);
   int win_w = 1, win_h = 1;
   glfwGetWindowSize(window_, &win_w, &win_h);
@@ -507,6 +542,7 @@ int GuiApp::run() {
     glfwPollEvents();
     if (glfwWindowShouldClose(window_)) break;
     take_snapshot();
+    watch_scene_file();
     const bool advance = run_script();
     int fb_width = 0, fb_height = 0;
     glfwGetFramebufferSize(window_, &fb_width, &fb_height);
@@ -563,6 +599,10 @@ int GuiApp::run() {
       draw_mouse_spring(snap, fb_width, fb_height);
       draw_panels(fb_width, fb_height);
       if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
+      draw_performance(fb_width);
+      inspect_particle(fb_width, fb_height);
+      draw_load_error(fb_width);
+      help_window(fb_width, fb_height);
       dump_state(fb_width, fb_height);
       ImGui::Render();
       ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());

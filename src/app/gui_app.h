@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/event_log.h"
+#include "app/file_watch.h"
 #include "app/frame_overlay.h"
 #include "app/gui.h"
 #include "app/gui_script.h"
@@ -24,6 +25,9 @@
 struct GLFWwindow;
 
 namespace periflex {
+
+// The deformation slider's largest factor (render/deformation.h: the automatic one stops at 1000).
+constexpr double kMaxDeformSlider = 1000.0;
 
 class GuiApp {
  public:
@@ -56,6 +60,16 @@ class GuiApp {
   void panel_parameters();
   void panel_view();
   void panel_view_controls();
+  void panel_deformation();
+  void panel_description();
+
+  // teaching aids (gui_teach.cpp)
+  void help_window(int fb_width, int fb_height);
+  void draw_performance(int fb_width);
+  void watch_scene_file();
+  void draw_load_error(int fb_width);
+  // the particle under the pointer (gui_inspect.cpp)
+  void inspect_particle(int fb_width, int fb_height);
   void panel_plots();
   void panel_export();
   void panel_log();
@@ -95,6 +109,12 @@ class GuiApp {
   bool auto_frame_ = false;         // the view grows with the scene until the user moves it
   Framing framing_;                 // what the view frames while auto_frame_
   int follow_ = -1;                 // geometry body index, -1: none
+  float deform_before_off_ = kAutoDeform;  // the magnification the D key brings back
+  bool show_help_ = false;          // the F1 window
+  std::string description_;         // of the scene shown (app/scene_description.h)
+  std::string shown_scene_path_;    // the file it came from; reloading it keeps the camera
+  FileWatch scene_watch_;           // that file, for the hot reload
+  double frame_seconds_ = 0.0, last_frame_wall_ = 0.0;
   PlotHistory history_;
   long seen_generation_ = -1, seen_scene_generation_ = -1;
   LiveSettings edit_;               // the live-parameter panel's copy

@@ -57,6 +57,9 @@ void GuiApp::draw_panels(int fb_width, int fb_height) {
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   ImGui::PushItemWidth(150.0f);
   panel_simulation();
+  const bool about_open = ImGui::CollapsingHeader("About this scene");
+  dump_.note_item("description_header");
+  if (about_open) panel_description();
   if (ImGui::CollapsingHeader("Live parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters();
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) panel_view();
   if (ImGui::CollapsingHeader("Plots")) panel_plots();
@@ -229,6 +232,11 @@ std::string describe_view_change(const RenderSettings& a, const RenderSettings& 
   };
   if (a.field != b.field) out += std::string(" field ") + field_name(b.field);
   if (a.colormap != b.colormap) out += " colour map " + b.colormap;
+  if (a.deform != b.deform) {
+    char text[48];
+    std::snprintf(text, sizeof text, " deformation x%g", double(b.deform));
+    out += b.deform < 0.0f ? std::string(" deformation auto") : std::string(text);
+  }
   if (a.auto_range != b.auto_range) out += b.auto_range ? " range auto" : " range fixed";
   if (!b.auto_range && (a.range_min != b.range_min || a.range_max != b.range_max)) {
     out += " range " + std::to_string(b.range_min) + " .. " + std::to_string(b.range_max);
@@ -280,6 +288,7 @@ void GuiApp::panel_view_controls() {
       ImGui::EndCombo();
     }
     ImGui::SliderFloat("particle size", &render_.particle_scale, 0.2f, 2.0f, "%.2f");
+    panel_deformation();
     ImGui::Checkbox("bonds", &render_.show_bonds);
     ImGui::SameLine();
   }
@@ -310,6 +319,24 @@ void GuiApp::panel_view_controls() {
     fit_pending_ = true;
     follow_ = -1;
   }
+}
+
+void GuiApp::panel_deformation() {
+  // the magnification of the flexible bodies' deformation: automatic, or a factor on a
+  // logarithmic slider (0: undeformed; Ctrl+click types a value)
+  bool automatic = render_.deform < 0.0f;
+  if (ImGui::Checkbox("##deform_auto", &automatic)) {
+    render_.deform = automatic ? kAutoDeform : static_cast<float>(renderer_->last_deform());
+  }
+  dump_.note_item("deform_auto");
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("automatic magnification");
+  ImGui::SameLine();
+  float factor = automatic ? static_cast<float>(renderer_->last_deform()) : render_.deform;
+  if (ImGui::SliderFloat("deformation", &factor, 0.0f, static_cast<float>(kMaxDeformSlider),
+                         automatic ? "x%g (auto)" : "x%g", ImGuiSliderFlags_Logarithmic)) {
+    render_.deform = std::clamp(factor, 0.0f, static_cast<float>(kMaxDeformSlider));
+  }
+  dump_.note_item("deform");
 }
 
 void GuiApp::panel_plots() {

@@ -26,13 +26,25 @@ std::optional<MouseSpring> pick(const Snapshot& snapshot, const Vec2& world, dou
   }
 
   // then the nearest particle within reach
+  const int best = particle_at(snapshot, snapshot.px, snapshot.py, world, tolerance);
+  if (best < 0) return std::nullopt;
+  MouseSpring spring;
+  spring.particle = best;
+  spring.target = world;
+  return spring;
+}
+
+int particle_at(const Snapshot& snapshot, const std::vector<float>& x, const std::vector<float>& y,
+                const Vec2& world, double tolerance) {
+  if (!snapshot.geometry) return -1;
   int best = -1;
   double best_d2 = 0.0;
-  for (const SceneGeometry::FlexBody& fb : g.flex_bodies) {
+  const int n = static_cast<int>(std::min(x.size(), y.size()));
+  for (const SceneGeometry::FlexBody& fb : snapshot.geometry->flex_bodies) {
     const double reach = std::max(fb.grid_spacing, tolerance);
-    const int end = std::min<int>(fb.first_particle + fb.particle_count, int(snapshot.px.size()));
+    const int end = std::min<int>(fb.first_particle + fb.particle_count, n);
     for (int i = fb.first_particle; i < end; ++i) {
-      const double dx = snapshot.px[i] - world.x(), dy = snapshot.py[i] - world.y();
+      const double dx = x[i] - world.x(), dy = y[i] - world.y();
       const double d2 = dx * dx + dy * dy;
       if (d2 <= reach * reach && (best < 0 || d2 < best_d2)) {
         best = i;
@@ -40,11 +52,7 @@ std::optional<MouseSpring> pick(const Snapshot& snapshot, const Vec2& world, dou
       }
     }
   }
-  if (best < 0) return std::nullopt;
-  MouseSpring spring;
-  spring.particle = best;
-  spring.target = world;
-  return spring;
+  return best;
 }
 
 }  // namespace periflex

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "solve/simulation.h"
 #include "solve/snapshot.h"
@@ -14,5 +15,11 @@ namespace periflex {
 // (or within `tolerance`, when larger). Ground and virtual bodies are not grabbed.
 // Empty when nothing is there.
 std::optional<MouseSpring> pick(const Snapshot& snapshot, const Vec2& world, double tolerance);
+
+// The particle nearest to `world` among positions x, y (the snapshot's, or where the renderer
+// drew them magnified), within one grid spacing of its body (or `tolerance`, when larger);
+// -1 when none is.
+int particle_at(const Snapshot& snapshot, const std::vector<float>& x, const std::vector<float>& y,
+                const Vec2& world, double tolerance);
 
 }  // namespace periflex

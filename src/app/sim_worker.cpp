@@ -111,6 +111,7 @@ void SimWorker::publish() {
   s.info = model_->info();
   s.scene_path = scene_path_;
   s.scene_name = scene_.name;
+  s.scene_description = scene_.description;
   s.generation = generation_;
   s.scene_generation = scene_generation_;
   s.numerical_error = numerical_error_;

@@ -69,6 +69,7 @@ struct WorkerStatus {
   ModelInfo info;
   std::string scene_path;
   std::string scene_name;
+  std::string scene_description;      // its scene.description key
   long generation = 0;                // grows when the model is rebuilt (reset, reload, switch)
   long scene_generation = 0;          // grows when a scene is (re)loaded from disk
   std::optional<NumericalDiagnostic> numerical_error;  // the last failure; cleared by reset/reload

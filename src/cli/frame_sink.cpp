@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cli/gui_command.h"
 #include "core/error.h"
 
 #ifdef PERIFLEX_WITH_HEADLESS
@@ -99,6 +100,10 @@ std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std:
   recorder.settings.field = parse_field(options.field);
   parse_camera(options.camera, recorder);
   if (!options.colormap.empty()) recorder.settings.colormap = options.colormap;
+  double deform = -1.0;
+  if (!parse_deform(options.deform, deform))
+    throw InputError({"command line", 0, 0, "--deform"}, parse_deform_check(options.deform));
+  recorder.settings.deform = static_cast<float>(deform);
   if (!options.movie_path.empty()) check_movie_output(options.movie_path, "--movie");
 
   // what the closing line names

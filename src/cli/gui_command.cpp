@@ -1,5 +1,6 @@
 #include "cli/gui_command.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -58,6 +59,25 @@ std::string parse_window_size_check(const std::string& text) {
   return "'" + text + "' is not a window size WxH (640x480 to 16384x16384, e.g. 1024x768)";
 }
 
+bool parse_deform(const std::string& text, double& factor) {
+  if (text.empty() || text == "auto") {
+    factor = -1.0;
+    return true;
+  }
+  // the whole text a number, finite and within range
+  char* end = nullptr;
+  const double k = std::strtod(text.c_str(), &end);
+  if (end == text.c_str() || *end != '\0' || !std::isfinite(k) || k < 0.0 || k > 1e6) return false;
+  factor = k;
+  return true;
+}
+
+std::string parse_deform_check(const std::string& text) {
+  double k = 0.0;
+  if (parse_deform(text, k)) return "";
+  return "'" + text + "' is not a deformation magnification: 'auto' or a number from 0 (undeformed) to 1e6";
+}
+
 int gui_command(const GuiCommandOptions& options) {
 #ifdef PERIFLEX_WITH_GUI
   check_gui_options(options);  // flags, output file and the scene's budget, before a window opens
@@ -71,6 +91,9 @@ int gui_command(const GuiCommandOptions& options) {
   gui.screenshot = options.screenshot;
   gui.script = options.script;
   gui.samples = options.samples;
+  if (!parse_deform(options.deform, gui.deform)) {
+    throw InputError({"command line", 0, 0, "--deform"}, parse_deform_check(options.deform));
+  }
   return run_gui(gui);
 #else
   throw InputError({"command line", 0, 0, "gui"},

@@ -35,6 +35,15 @@ void add_scene_options(CLI::App* command, std::vector<std::string>& overrides) {
       ->type_name("KEY=VALUE");
 }
 
+// The deformation magnification of `run --render` and `gui`.
+void add_deform_option(CLI::App* command, std::string& deform) {
+  command->add_option("--deform", deform,
+                      "Magnify the flexible bodies' deformation K times (0: undeformed; default auto: "
+                      "up to 1000x, so the largest deformation shows at a tenth of the body's size)")
+      ->type_name("K|auto")
+      ->check(CLI::Validator(parse_deform_check, "K|auto"));
+}
+
 // Off-screen rendering options shared by `run` and the default headless recording.
 void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_flag("--render", o.render, "Render frames off-screen (EGL) while running");
@@ -53,6 +62,7 @@ void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_option("--camera", o.camera,
                       "View of the frames: grow (fit the first frame, widen when the scene leaves it; "
                       "default), fit (fit the first frame and keep it), or X,Y,HEIGHT (fixed, metres)");
+  add_deform_option(command, o.deform);
 }
 
 int run_main(int argc, char** argv) {
@@ -94,6 +104,7 @@ int run_main(int argc, char** argv) {
       ->check(CLI::Range(1, 16));
   gui_cmd->add_option("--size", gui.size, "Window size WxH in screen pixels (default 1280x800, at least 640x480)")
       ->check(CLI::Validator(parse_window_size_check, "WxH"));
+  add_deform_option(gui_cmd, gui.deform);
 
   StudyOptions study;
   auto* study_cmd = add_study_subcommand(app, study);

@@ -34,6 +34,7 @@ struct RunOptions {
   std::string colormap;                 // empty: default
   std::string field;                    // damage | displacement | speed | strain
   std::string camera;                   // grow (default) | fit | "X,Y,HEIGHT"
+  std::string deform;                   // deformation magnification: auto (default) | K >= 0
 };
 
 // Returns the process exit code (0 ok, 2 bad input, 3 numerical failure, 1 other).

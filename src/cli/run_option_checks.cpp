@@ -84,6 +84,7 @@ void check_run_values(const RunOptions& o) {
     if (std::find(names.begin(), names.end(), o.colormap) == names.end())
       fail("--colormap", "unknown colour map '" + o.colormap + "'; expected one of: " + join(names));
   }
+  if (!parse_deform_check(o.deform).empty()) fail("--deform", parse_deform_check(o.deform));
   if (!o.field.empty()) {
     const std::vector<std::string> fields = {"damage", "displacement", "speed", "strain"};
     if (std::find(fields.begin(), fields.end(), o.field) == fields.end())
@@ -151,6 +152,7 @@ SceneDef load_run_scene(RunOptions& options) {
 
 void check_gui_options(const GuiCommandOptions& options) {
   if (!options.screenshot.empty()) check_writable_file("--screenshot", options.screenshot);
+  if (!parse_deform_check(options.deform).empty()) fail("--deform", parse_deform_check(options.deform));
   if (!options.scene_path.empty()) load_scene_with_options(options.scene_path, options.overrides);
 }
 

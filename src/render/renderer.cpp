@@ -10,6 +10,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "render/deformation.h"
 #include "render/gl.h"
 #include "render/image.h"
 #include "render/solid_mesh.h"
@@ -107,6 +108,15 @@ struct Renderer::Impl {
   float range_min = 0.0f, range_max = 1.0f;
   std::string last_colormap = "ember";
 
+  // particle positions drawn: the snapshot's, or magnified ones (render/deformation.h)
+  std::vector<float> shown_x, shown_y;
+  double deform_used = 1.0;
+  double pixel_world = 0.0;        // of the last draw, for the scale bar
+  // the automatic factor only shrinks during a run, so a movie does not jump back and forth
+  const SceneGeometry* deform_geometry = nullptr;
+  double deform_time = -1e300;
+  double auto_deform = kMaxAutoDeform;
+
   // trails: one polyline per rigid body centre and per probe
   const SceneGeometry* trail_geometry = nullptr;
   double trail_time = -1e300;
@@ -117,6 +127,7 @@ struct Renderer::Impl {
   const Colormap& colormap(const std::string& name) const;
   void update_range(const Snapshot& s, const RenderSettings& settings);
   void record_trails(const Snapshot& s, int max_points);
+  void update_deformation(const Snapshot& s, const RenderSettings& settings);
   void draw_mesh(const float projection[16]);
   void draw_particles(const Snapshot& s, const RenderSettings& settings, const float projection[16],
                       double pixel_world);
@@ -208,6 +219,25 @@ void Renderer::Impl::update_range(const Snapshot& s, const RenderSettings& setti
   if (!(range_max > range_min)) range_max = range_min + std::max(1e-6f, std::abs(range_min) * 1e-3f);
 }
 
+void Renderer::Impl::update_deformation(const Snapshot& s, const RenderSettings& settings) {
+  double factor = settings.deform;
+  if (factor < 0.0) {
+    // start over when the scene changes or time runs backwards (reset, reload)
+    if (s.geometry.get() != deform_geometry || s.time < deform_time) auto_deform = kMaxAutoDeform;
+    deform_geometry = s.geometry.get();
+    deform_time = s.time;
+    auto_deform = std::min(auto_deform, auto_deform_factor(s));
+    factor = s.geometry && s.geometry->has_particles() ? auto_deform : 1.0;
+  }
+  deform_used = factor;
+  if (factor == 1.0) {
+    shown_x = s.px;
+    shown_y = s.py;
+  } else {
+    magnify_deformation(s, factor, shown_x, shown_y);
+  }
+}
+
 void Renderer::Impl::record_trails(const Snapshot& s, int max_points) {
   // start over when the scene changes or time runs backwards (reset, reload)
   if (s.geometry.get() != trail_geometry || s.time < trail_time) {
@@ -245,15 +275,15 @@ void Renderer::Impl::draw_mesh(const float projection[16]) {
 
 void Renderer::Impl::draw_particles(const Snapshot& s, const RenderSettings& settings, const float projection[16],
                                     double pixel_world) {
-  const size_t n = std::min(s.px.size(), s.py.size());
+  const size_t n = std::min(shown_x.size(), shown_y.size());
   if (n == 0) return;
   // interleave x, y and the field value: 12 bytes per particle, one upload per frame
   const std::vector<float>& field = *field_values(s, settings.field);
   instances.resize(3 * n);
   const bool has_field = field.size() >= n;
   for (size_t i = 0; i < n; ++i) {
-    instances[3 * i] = s.px[i];
-    instances[3 * i + 1] = s.py[i];
+    instances[3 * i] = shown_x[i];
+    instances[3 * i + 1] = shown_y[i];
     instances[3 * i + 2] = has_field ? field[i] : 0.0f;
   }
   glUseProgram(particle_program);
@@ -309,7 +339,7 @@ void Renderer::Impl::draw_particles(const Snapshot& s, const RenderSettings& set
   for (const auto& fb : s.geometry->flex_bodies) spacing = std::max(spacing, fb.grid_spacing);
   const auto& flags = s.geometry->particle_attached;
   for (size_t i = 0; i < std::min(n, flags.size()); ++i)
-    if (flags[i]) attached.insert(attached.end(), {s.px[i], s.py[i], 0.0f});
+    if (flags[i]) attached.insert(attached.end(), {shown_x[i], shown_y[i], 0.0f});
   if (attached.empty()) return;
   glBindVertexArray(attached_vao);
   glBindBuffer(GL_ARRAY_BUFFER, attached_vbo);
@@ -355,10 +385,10 @@ void Renderer::Impl::build_bodies(const Snapshot& s, bool virtual_bodies) {
 void Renderer::Impl::build_overlay_geometry(const Snapshot& s, const RenderSettings& settings) {
   // bonds: thin translucent lines between the particles of small bodies
   if (settings.show_bonds) {
-    const size_t n = std::min(s.px.size(), s.py.size());
+    const size_t n = std::min(shown_x.size(), shown_y.size());
     for (const auto& [i, j] : s.bond_pairs) {
       if (i < 0 || j < 0 || size_t(i) >= n || size_t(j) >= n) continue;
-      mesh.line(Vec2(s.px[i], s.py[i]), Vec2(s.px[j], s.py[j]), 1.0, kBond);
+      mesh.line(Vec2(shown_x[i], shown_y[i]), Vec2(shown_x[j], shown_y[j]), 1.0, kBond);
     }
   }
   if (settings.show_bodies) build_bodies(s, true);
@@ -457,6 +487,7 @@ void Renderer::draw(const Snapshot& snapshot, const Camera& camera, const Render
   m.last_colormap = settings.colormap;
   m.update_range(snapshot, settings);
   m.record_trails(snapshot, settings.trail_length);
+  m.update_deformation(snapshot, settings);
 
   // fixed state for the whole picture: 2D, no depth, straight alpha blending
   glViewport(0, 0, width, height);
@@ -472,6 +503,7 @@ void Renderer::draw(const Snapshot& snapshot, const Camera& camera, const Render
   float projection[16];
   camera.projection(height > 0 ? double(width) / height : 1.0, projection);
   const double pixel_world = camera.view_height / std::max(height, 1);
+  m.pixel_world = pixel_world;
   m.mesh.set_pixel_world(pixel_world);
 
   // back to front: rigid bodies, particles, then everything drawn over them
@@ -484,27 +516,72 @@ void Renderer::draw(const Snapshot& snapshot, const Camera& camera, const Render
   glUseProgram(0);
 }
 
+namespace {
+
+// The unit of a colour field, shown in the legend.
+const char* field_unit(ColorField field) {
+  switch (field) {
+    case ColorField::kDamage: return "-";
+    case ColorField::kDisplacement: return "m";
+    case ColorField::kSpeed: return "m/s";
+    case ColorField::kStrain: return "-";
+  }
+  return "-";
+}
+
+// A length in the unit that reads best: "20 mm", "500 um", "2 m".
+std::string format_length(double metres) {
+  char text[32];
+  if (metres >= 1.0) std::snprintf(text, sizeof text, "%g m", metres);
+  else if (metres >= 1e-3) std::snprintf(text, sizeof text, "%g mm", metres * 1e3);
+  else std::snprintf(text, sizeof text, "%g um", metres * 1e6);
+  return text;
+}
+
+}  // namespace
+
 void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height) {
   if (!settings.show_overlay) return;
   ImDrawList* dl = ImGui::GetForegroundDrawList();
   const float font = ImGui::GetFontSize();
   const ImU32 white = IM_COL32(240, 240, 240, 255), shade = IM_COL32(0, 0, 0, 140);
 
-  // top left: scene name, time and step on a shaded box
+  // top left: scene name, time and step, and the deformation factor when it is not 1, on a
+  // shaded box
+  std::vector<std::string> lines;
+  if (snapshot.geometry && !snapshot.geometry->scene_name.empty()) lines.push_back(snapshot.geometry->scene_name);
   char line[160];
   std::snprintf(line, sizeof line, "t = %.6g s   step %ld", snapshot.time, snapshot.step);
-  const std::string name = snapshot.geometry ? snapshot.geometry->scene_name : std::string();
-  const float text_w = std::max(ImGui::CalcTextSize(line).x, ImGui::CalcTextSize(name.c_str()).x);
-  const float lines = name.empty() ? 1.0f : 2.0f;
-  dl->AddRectFilled(ImVec2(6, 6), ImVec2(14 + text_w, 10 + lines * (font + 2)), shade, 3.0f);
+  lines.push_back(line);
+  if (!snapshot.px.empty() && impl_->deform_used != 1.0) {
+    std::snprintf(line, sizeof line, "deformation x%g%s", impl_->deform_used, settings.deform < 0.0f ? " (auto)" : "");
+    lines.push_back(line);
+  }
+  float text_w = 0.0f;
+  for (const std::string& l : lines) text_w = std::max(text_w, ImGui::CalcTextSize(l.c_str()).x);
+  dl->AddRectFilled(ImVec2(6, 6), ImVec2(14 + text_w, 10 + lines.size() * (font + 2)), shade, 3.0f);
   float y = 8;
-  if (!name.empty()) {
-    dl->AddText(ImVec2(10, y), white, name.c_str());
+  for (const std::string& l : lines) {
+    dl->AddText(ImVec2(10, y), white, l.c_str());
     y += font + 2;
   }
-  dl->AddText(ImVec2(10, y), white, line);
 
-  // bottom left: colour legend of the particle field
+  // bottom right: a scale bar of a round length (1, 2 or 5 times a power of ten), 40 to 100
+  // pixels long, clear of the colour legend down to 320-pixel-wide pictures
+  if (impl_->pixel_world > 0.0 && std::isfinite(impl_->pixel_world)) {
+    const double metres = round_down_125(100.0 * impl_->pixel_world);
+    const float bar = static_cast<float>(metres / impl_->pixel_world);
+    const std::string label = format_length(metres);
+    const float label_w = ImGui::CalcTextSize(label.c_str()).x;
+    const float x1 = width - 14.0f, x0 = x1 - bar, yb = height - 14.0f;
+    dl->AddRectFilled(ImVec2(x0 - 6, yb - font - 10), ImVec2(x1 + 6, height - 6.0f), shade, 3.0f);
+    dl->AddLine(ImVec2(x0, yb), ImVec2(x1, yb), white, 2.0f);
+    dl->AddLine(ImVec2(x0, yb - 5), ImVec2(x0, yb + 1), white, 2.0f);
+    dl->AddLine(ImVec2(x1, yb - 5), ImVec2(x1, yb + 1), white, 2.0f);
+    dl->AddText(ImVec2(0.5f * (x0 + x1 - label_w), yb - font - 6), white, label.c_str());
+  }
+
+  // bottom left: colour legend of the particle field, with its unit
   if (snapshot.px.empty()) return;
   const std::vector<unsigned char>& table = colormap_table(settings.colormap);
   const float bar_w = std::min(220.0f, 0.5f * width), bar_h = 12.0f;
@@ -521,7 +598,8 @@ void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& sett
     dl->AddRectFilledMultiColor(ImVec2(xa, y0), ImVec2(xb, y0 + bar_h), ca, cb, cb, ca);
   }
   dl->AddRect(ImVec2(x0, y0), ImVec2(x0 + bar_w, y0 + bar_h), white);
-  dl->AddText(ImVec2(x0, y0 - font - 3), white, field_name(settings.field));
+  const std::string title = std::string(field_name(settings.field)) + " [" + field_unit(settings.field) + "]";
+  dl->AddText(ImVec2(x0, y0 - font - 3), white, title.c_str());
   char lo[32], hi[32];
   std::snprintf(lo, sizeof lo, "%.3g", impl_->range_min);
   std::snprintf(hi, sizeof hi, "%.3g", impl_->range_max);
@@ -531,6 +609,9 @@ void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& sett
 
 float Renderer::last_range_min() const { return impl_->range_min; }
 float Renderer::last_range_max() const { return impl_->range_max; }
+double Renderer::last_deform() const { return impl_->deform_used; }
+const std::vector<float>& Renderer::drawn_x() const { return impl_->shown_x; }
+const std::vector<float>& Renderer::drawn_y() const { return impl_->shown_y; }
 
 std::vector<std::string> Renderer::colormap_names() const {
   std::vector<std::string> names;

@@ -37,6 +37,9 @@ class ImGuiContextLock {
   ImGuiContextLock& operator=(const ImGuiContextLock&) = delete;
 };
 
+// RenderSettings::deform asking for the automatic magnification
+constexpr float kAutoDeform = -1.0f;
+
 struct RenderSettings {
   ColorField field = ColorField::kDamage;
   bool auto_range = true;          // range from the data each frame
@@ -50,6 +53,9 @@ struct RenderSettings {
   bool show_trails = false;
   bool show_overlay = true;        // time, scene name, colour legend
   float particle_scale = 1.0f;     // disc diameter in grid spacings
+  // Deformation magnification K (render/deformation.h): 1 true scale, 0 undeformed; negative
+  // (kAutoDeform): chosen from the picture, never growing during a run.
+  float deform = 1.0f;
   int trail_length = 400;          // points kept per trail (probes and rigid-body centres)
   float background[3] = {0.12f, 0.12f, 0.14f};
 };
@@ -66,12 +72,17 @@ class Renderer {
   // std::runtime_error for an unknown colour map name (colormap_names() lists the valid ones).
   void draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings,
             int width, int height);
-  // Draws the overlay (time, scene name, colour legend) with Dear ImGui's draw lists;
+  // Draws the overlay (time, scene name, deformation factor, colour legend, scale bar) with Dear ImGui's draw lists;
   // call between ImGui::NewFrame() and ImGui::Render().
   void draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height);
   // Colour range used by the last draw (auto or fixed).
   float last_range_min() const;
   float last_range_max() const;
+  // Deformation magnification used by the last draw (the automatic one when asked).
+  double last_deform() const;
+  // Particle positions as the last draw placed them (magnified), for picking what is seen.
+  const std::vector<float>& drawn_x() const;
+  const std::vector<float>& drawn_y() const;
   std::vector<std::string> colormap_names() const;
   // The colour map as 256 RGBA entries (for legends drawn elsewhere); throws for unknown names.
   const std::vector<unsigned char>& colormap_table(const std::string& name) const;

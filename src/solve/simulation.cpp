@@ -699,6 +699,8 @@ void Simulation::fill_snapshot(Snapshot& out) const {
       for (int p = 0; p < flex->particle_count(); ++p) {
         g->reference_x.push_back(static_cast<float>(ref[2 * p]));
         g->reference_y.push_back(static_cast<float>(ref[2 * p + 1]));
+        const BondStore& bonds = flex->bonds();
+        g->bonds_initial.push_back(static_cast<uint16_t>(std::min<int64_t>(bonds.row[p + 1] - bonds.row[p], 65535)));
       }
       g->reference_xy.insert(g->reference_xy.end(), ref.begin(), ref.end());
       g->particle_volume.insert(g->particle_volume.end(), flex->volumes().begin(), flex->volumes().end());
@@ -750,6 +752,7 @@ void Simulation::fill_snapshot(Snapshot& out) const {
   out.vx.clear();
   out.vy.clear();
   out.strain.clear();
+  out.bonds_intact.clear();
   out.bond_pairs.clear();
   out.particle_q.clear();
   out.particle_qd.clear();
@@ -778,6 +781,18 @@ void Simulation::fill_snapshot(Snapshot& out) const {
     out.damage.insert(out.damage.end(), buffer.begin(), buffer.end());
     flex->max_stretch(q, buffer);
     out.strain.insert(out.strain.end(), buffer.begin(), buffer.end());
+    // intact bonds of each particle, for the window's inspector
+    const BondStore& bonds = flex->bonds();
+    const size_t at = out.bonds_intact.size();
+    const int n = flex->particle_count();
+    out.bonds_intact.resize(at + n);
+    uint16_t* intact = out.bonds_intact.data() + at;
+#pragma omp parallel for schedule(static) if (n >= 4096)
+    for (int i = 0; i < n; ++i) {
+      int64_t count = 0;
+      for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) count += bonds.broken[k] ? 0 : 1;
+      intact[i] = static_cast<uint16_t>(std::min<int64_t>(count, 65535));
+    }
     if (flex->bond_count() < kDrawnBondLimit) {
       flex->bond_pairs(pairs, kDrawnBondLimit);
       for (const auto& [i, j] : pairs) out.bond_pairs.emplace_back(first + i, first + j);

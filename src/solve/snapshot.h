@@ -35,6 +35,7 @@ struct SceneGeometry {
   // writers, whose displacements must not lose digits to float
   std::vector<double> reference_xy;
   std::vector<double> particle_volume;
+  std::vector<uint16_t> bonds_initial;     // bonds of each particle at the start (for inspection)
   Vec2 bounds_min = Vec2::Zero(), bounds_max = Vec2::Zero();  // of the initial configuration
   bool has_particles() const { return !reference_x.empty(); }
 };
@@ -66,6 +67,7 @@ struct Snapshot {
   std::vector<float> speed;        // |v|
   std::vector<float> vx, vy;       // velocity components
   std::vector<float> strain;       // largest bond stretch
+  std::vector<uint16_t> bonds_intact;  // bonds of each particle not broken (of geometry->bonds_initial)
   std::vector<std::pair<int, int>> bond_pairs;  // intact bonds, only for small bodies
   // Positions and velocities in full precision (x0, y0, x1, y1, ...), filled only when the
   // caller sets full_precision (the VTK writer); the drawing needs floats only.

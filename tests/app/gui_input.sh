@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_mp4 | keys | damping | refusal | spring
+# CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -73,7 +73,9 @@ to_window() {
 start() {
   local scene=$1
   shift
-  PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" gui "$scenes/$scene" "$@" 2>"$log" &
+  # a scene file name is looked for among the shipped scenes, a path taken as it is
+  [[ "$scene" == */* ]] || scene="$scenes/$scene"
+  PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" gui "$scene" "$@" 2>"$log" &
   pid=$!
   wait_until 60 "the window's first frame" '[[ -n "$(state running)" ]]'
   window=$(xdotool search --sync --pid "$pid" 2>/dev/null | head -n 1)
@@ -229,7 +231,7 @@ case "$case_name" in
     field_key Return
     wait_until 10 "bond damping 0.25 applied" 'holds "$(state bond_damping) == 0.25"'
     grep -q "settings: .*(ui)" "$log" || fail "the change is not in the log"
-    [[ "$(state running)" == 1 ]] || fail "the run stopped"
+    [[ "$(state running)" == 1 ]] || fail "the broken file stopped the run"
     quit
     ;;
   refusal)
@@ -292,6 +294,132 @@ case "$case_name" in
     holds "$moved > 10 * $noise" || fail "moved $moved m, not 10x the noise $noise m"
     holds "$moved > 5e-4" || fail "moved $moved m: less than half a grid spacing"
     wait_until 10 "the release" '[[ -z "$(state grabbed)" ]]'
+    quit
+    ;;
+  deform)
+    # the notched plate bent by its grips, drawn undeformed (--deform 0), then magnified 100
+    # times through the View panel's slider (Ctrl+click types a value), each picture taken with S
+    cd "$work" || fail "cd $work"
+    start notched_plate.toml --deform 0
+    [[ "$(state deform)" == 0 ]] || fail "--deform 0 shows deformation x$(state deform)"
+    wait_until 60 "the grips to bend the plate (t > 0.4 ms)" 'holds "$(state time) > 4e-4"'
+    xdotool mousemove --window "$window" 1200 100
+    tap space
+    wait_until 10 "Space to pause" '[[ "$(state running)" == 0 ]]'
+    shoot() {
+      rm -f periflex_*.png
+      tap s
+      wait_until 20 "the screenshot" 'ls periflex_*.png >/dev/null 2>&1'
+      sleep 0.5
+      mv periflex_*.png "$1"
+    }
+    shoot k0.png
+    # Ctrl+click on the slider, then the factor typed
+    xy=$(centre deform)
+    [[ -n "$xy" ]] || fail "no deformation slider"
+    xdotool mousemove --window "$window" ${xy% *} ${xy#* } && sleep 0.2 &&
+      xdotool keydown ctrl && sleep 0.1 && xdotool click 1 && sleep 0.1 && xdotool keyup ctrl ||
+      fail "xdotool ctrl+click"
+    sleep 0.3
+    retype 100
+    field_key Return
+    wait_until 10 "the slider at 100" '[[ "$(state deform)" == 100 ]]'
+    [[ "$(state deform_auto)" == 0 ]] || fail "still automatic"
+    grep -q "view: deformation x100 (ui)" "$log" || fail "the change is not in the log"
+    xdotool mousemove --window "$window" 1200 100
+    shoot k100.png
+    # D: undeformed, and back
+    tap d
+    wait_until 10 "D to show the undeformed plate" '[[ "$(state deform)" == 0 ]]'
+    tap d
+    wait_until 10 "D again to bring back x100" '[[ "$(state deform)" == 100 ]]'
+    quit
+    if [[ -n "$png_check" ]]; then
+      "$png_check" k0.png --lower-edge-spread 0 3 || fail "the undeformed plate's lower edge is not flat"
+      "$png_check" k100.png --lower-edge-spread 20 1000 || fail "the magnified plate's lower edge does not bend"
+    fi
+    ;;
+  teach)
+    # a copy of the pendulum scene, edited on disk while the window shows it
+    cp "$scenes/pendulum.toml" "$work/scene.toml" || fail "copy of the scene"
+    start "$work/scene.toml" --set solver.end_time=1000
+    xdotool mousemove --window "$window" 1200 300
+    # F1 shows every key and mouse action, F1 again hides them
+    tap F1
+    wait_until 10 "F1 to open the list of keys" '[[ -n "$(centre help_table)" && "$(state help)" == 1 ]]'
+    read -r _ top _ bottom < <(awk '$1 == "widget" && $2 == "help_table" { print $3, $4, $5, $6 }' "$widgets")
+    ((bottom - top > 15 * 12)) || fail "the list of keys is $((bottom - top)) px tall: not 15 rows"
+    tap F1
+    wait_until 10 "F1 to close it" '[[ -z "$(centre help_table)" && "$(state help)" == 0 ]]'
+    # the description panel shows the file's opening comment
+    first=$(awk '/^#/ { sub(/^# ?/, ""); print; exit }' "$work/scene.toml")
+    click description_header
+    wait_until 10 "the description panel" '[[ -n "$(centre description)" ]]'
+    [[ "$(state description)" == "$first" ]] || fail "description '$(state description)', the file says '$first'"
+    # the frame rate and the solver's pace over the picture
+    wait_until 10 "the pace shown" '[[ "$(state performance)" == *fps*steps/s*"x real time"* ]]'
+    holds "$(state fps) > 0" || fail "fps $(state fps)"
+    # a view of one's own (a right-drag pans), kept by the reloads below
+    xdotool mousemove --window "$window" 900 400 mousedown 3 mousemove --window "$window" 960 440 \
+      mousemove --window "$window" 1000 460 mouseup 3 || fail "xdotool right-drag"
+    sleep 0.5
+    view=$(state world_to_window)
+    generation=$(state scene_generation)
+    # saved with a change: reloaded, the view kept
+    sed -i 's/^end_time = .*/end_time = 7.0/' "$work/scene.toml"
+    grep -q '^end_time = 7.0' "$work/scene.toml" || fail "the edit did not take"
+    wait_until 10 "the saved file to be reloaded" '(( $(state scene_generation) > generation ))'
+    [[ "$(state world_to_window)" == "$view" ]] || fail "the reload moved the view"
+    grep -q "changed on disk: reloading" "$log" || fail "the reload is not in the log"
+    # reloaded paused at t = 0, as by the Reload button: run it again
+    wait_until 10 "paused at t = 0 after the reload" '[[ "$(state running)" == 0 ]] && (( $(state step) == 0 ))'
+    tap space
+    wait_until 10 "Space to run the reloaded scene" '[[ "$(state running)" == 1 ]] && (( $(state step) > 0 ))'
+    # saved broken: the error over the picture, naming the file and line; the scene kept
+    generation=$(state scene_generation)
+    echo 'broken = [' >> "$work/scene.toml"
+    wait_until 10 "the error shown over the picture" '[[ -n "$(centre load_error)" ]]'
+    [[ "$(state load_error)" == *scene.toml:* ]] || fail "the error does not name the file: $(state load_error)"
+    (( $(state scene_generation) == generation )) || fail "a broken file replaced the scene"
+    [[ "$(state running)" == 1 ]] || fail "the run stopped"
+    # mended: loaded, the error gone
+    sed -i '$d' "$work/scene.toml"
+    wait_until 10 "the mended file loaded, the error gone" \
+      '(( $(state scene_generation) > generation )) && [[ -z "$(centre load_error)" ]]'
+    quit
+    ;;
+  inspect)
+    # hovering a particle of the notched plate (drawn at true scale) shows what it is doing
+    start notched_plate.toml --deform 1
+    mapping=""
+    wait_until 20 "a steady view" '[[ -n "$mapping" && "$mapping" == "$(state world_to_window)" ]] || { mapping=$(state world_to_window); sleep 0.5; false; }'
+    # the particle within a spacing of world point X Y is the one under the pointer (the
+    # pointer's move has reached the window)
+    near() {
+      state pointed | awk -v X="$1" -v Y="$2" '{ exit !(($2 - X)^2 + ($3 - Y)^2 < 1e-6) }'
+    }
+    # an inner particle of the plate, far from the notch and the grips
+    read -r x y < <(to_window 0.025 0.012)
+    xdotool mousemove --window "$window" "$x" "$y"
+    wait_until 10 "the pointer over (25, 12) mm" 'near 0.025 0.012'
+    wait_until 10 "the inspector over a particle" '[[ -n "$(centre inspector)" && -n "$(state inspected)" ]]'
+    read -r id intact broken < <(state inspected)
+    read -r pointed _ < <(state pointed)
+    [[ "$id" == "$pointed" ]] || fail "inspecting particle $id, the pointer is on $pointed"
+    echo "inner particle $id: $intact intact, $broken broken bonds"
+    ((intact >= 20 && broken == 0)) || fail "inner particle $id: $intact intact, $broken broken bonds"
+    # a particle beside the notch, more than a horizon above the lower edge: the bonds across
+    # the cut are missing or broken
+    read -r x y < <(to_window 0.0005 -0.0145)
+    xdotool mousemove --window "$window" "$x" "$y"
+    wait_until 10 "the pointer beside the notch" 'near 0.0005 -0.0145'
+    wait_until 10 "the inspector beside the notch" '[[ "$(state inspected)" == "$(state pointed | cut -d " " -f 1) "* ]]'
+    read -r id2 intact2 broken2 < <(state inspected)
+    echo "particle $id2 beside the notch: $intact2 intact, $broken2 broken bonds"
+    ((id2 != id && intact2 < intact)) || fail "particle $id2 beside the notch: $intact2 intact bonds, inner one $intact"
+    # away from the plate: no inspector
+    xdotool mousemove --window "$window" 1200 150
+    wait_until 10 "the inspector gone off the plate" '[[ -z "$(centre inspector)" && -z "$(state inspected)" ]]'
     quit
     ;;
   *)

@@ -12,17 +12,24 @@
 //                                            recorded frames of a scene with particles
 //   gui_png_check IMAGE --no-overlay         the opposite, for a picture drawn without it
 //                                            (proves the overlay check can fail)
+//   gui_png_check IMAGE --lower-edge-spread MIN MAX
+//                                            the lowest drawn row of each column of the middle
+//                                            70 % of what is drawn varies by MIN to MAX pixels:
+//                                            a flat lower edge (0 3: the particle discs
+//                                            scallop it) or a bent one (20 1000)
 //
 // The notch is found where the GUI draws it: the scene is built, its first snapshot framed with
 // the GUI's own fit_camera_beside_panels for the image's size. Exit code 0 pass, 1 fail, 2 usage.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "app/view_fit.h"
 #include "core/resources.h"
@@ -60,7 +67,8 @@ constexpr size_t kMinBarColours = 16;
 
 int usage() {
   std::fprintf(stderr,
-               "usage: gui_png_check IMAGE [--crack SCENE | --no-crack SCENE | --overlay | --no-overlay]\n");
+               "usage: gui_png_check IMAGE [--crack SCENE | --no-crack SCENE | --overlay | --no-overlay |\n"
+               "                             --lower-edge-spread MIN MAX]\n");
   return 2;
 }
 
@@ -172,14 +180,67 @@ OverlaySeen find_overlay(const RgbaImage& image) {
   return seen;
 }
 
+// How many pixels the lower edge of what is drawn rises and falls over the middle 70 % of its
+// width (the ends carry grips, markers and probes). The lowest drawn pixel of each column is
+// searched from kEdgeSearchFromBottom pixels above the bottom, clear of the colour legend and
+// the scale bar, down to the name and time box at the top (kEdgeSearchTop), which is not counted.
+// -1 when nothing is drawn.
+constexpr int kEdgeSearchFromBottom = 70, kEdgeSearchTop = 80;
+
+int lower_edge_spread(const RgbaImage& image) {
+  const RenderSettings defaults;
+  int bg[3];
+  for (int c = 0; c < 3; ++c) bg[c] = int(std::lround(defaults.background[c] * 255));
+  std::vector<int> edge(image.width, -1);
+  for (int x = 0; x < image.width; ++x) {
+    for (int y = image.height - kEdgeSearchFromBottom; y >= kEdgeSearchTop; --y) {
+      const uint8_t* p = image.at(x, y);
+      if (std::abs(p[0] - bg[0]) + std::abs(p[1] - bg[1]) + std::abs(p[2] - bg[2]) > 60) {
+        edge[x] = y;
+        break;
+      }
+    }
+  }
+  int first = -1, last = -1;
+  for (int x = 0; x < image.width; ++x)
+    if (edge[x] >= 0) {
+      if (first < 0) first = x;
+      last = x;
+    }
+  if (first < 0) return -1;
+  const int margin = (last - first) * 15 / 100;
+  int lo = image.height, hi = -1;
+  for (int x = first + margin; x <= last - margin; ++x) {
+    if (edge[x] < 0) continue;
+    lo = std::min(lo, edge[x]);
+    hi = std::max(hi, edge[x]);
+  }
+  std::printf("lower edge between rows %d and %d over columns %d .. %d\n", lo, hi, first + margin, last - margin);
+  return hi >= lo ? hi - lo : -1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2 || argc > 4) return usage();
+  if (argc < 2 || argc > 5) return usage();
   const std::string mode = argc >= 3 ? argv[2] : "";
+  if (mode == "--lower-edge-spread") {
+    if (argc != 5) return usage();
+    try {
+      const RgbaImage image = read_png(argv[1]);
+      const int spread = lower_edge_spread(image);
+      const int lo = std::atoi(argv[3]), hi = std::atoi(argv[4]);
+      std::printf("%s: lower edge spread %d px, asked %d .. %d: %s\n", argv[1], spread, lo, hi,
+                  spread >= lo && spread <= hi ? "PASS" : "FAIL");
+      return spread >= lo && spread <= hi ? 0 : 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gui_png_check: %s\n", e.what());
+      return 1;
+    }
+  }
   const bool scene_mode = mode == "--crack" || mode == "--no-crack";
   const bool overlay_mode = mode == "--overlay" || mode == "--no-overlay";
-  if (argc == 4 && !scene_mode) return usage();
+  if (argc == 5 || (argc == 4 && !scene_mode)) return usage();
   if (argc == 3 && !overlay_mode) return usage();
   try {
     const RgbaImage image = read_png(argv[1]);

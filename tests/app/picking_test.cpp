@@ -69,5 +69,18 @@ TEST(Picking, NeverGrabsVirtualBodiesOrTheGround) {
   EXPECT_FALSE(pick(empty, Vec2(0.0, 0.0), 1.0).has_value());
 }
 
+// The inspector looks for a particle where it is drawn: with the deformation magnified the
+// drawn positions differ from the snapshot's, and the particle drawn under the pointer wins.
+TEST(Picking, ParticleAtUsesTheGivenPositions) {
+  const Snapshot s = make_snapshot();
+  EXPECT_EQ(particle_at(s, s.px, s.py, Vec2(-1.9, 0.02), 0.0), 1);
+  // drawn 1 m higher: nothing where they really are, particle 1 where it is drawn
+  std::vector<float> drawn_y = {1.0f, 1.0f, 1.0f};
+  EXPECT_EQ(particle_at(s, s.px, drawn_y, Vec2(-1.9, 0.02), 0.0), -1);
+  EXPECT_EQ(particle_at(s, s.px, drawn_y, Vec2(-1.9, 1.02), 0.0), 1);
+  // beyond one spacing of any particle: none
+  EXPECT_EQ(particle_at(s, s.px, s.py, Vec2(-1.5, 0.0), 0.0), -1);
+}
+
 }  // namespace
 }  // namespace periflex

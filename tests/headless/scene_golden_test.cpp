@@ -89,6 +89,31 @@ TEST_P(SceneGolden, MatchesGoldenImage) {
 INSTANTIATE_TEST_SUITE_P(ShippedScenes, SceneGolden, ::testing::ValuesIn(shipped_scenes()),
                          [](const ::testing::TestParamInfo<std::string>& scene) { return scene.param; });
 
+// The notched plate with its deformation magnified 100 times (render/deformation.h), the bend
+// and the opening notch drawn as the window and `run --deform 100` draw them. Without the overlay
+// (the other goldens hold it), so that only the particles' places can make the difference.
+RenderSettings magnified_settings(float deform = 100.0f) {
+  RenderSettings settings;
+  settings.deform = deform;
+  settings.show_overlay = false;
+  return settings;
+}
+
+TEST(MagnifiedGolden, NotchedPlateAtHundredfold) {
+  const std::string name = "notched_plate_deform100";
+  const RgbaImage actual = render_snapshot_image(snapshot_of("notched_plate"), magnified_settings(), kWidth, kHeight);
+  if (updating_goldens()) {
+    write_png(golden_path(name).string(), actual);
+    GTEST_SKIP() << "golden written: " << golden_path(name);
+  }
+  ASSERT_TRUE(fs::exists(golden_path(name))) << "no golden for " << name << "; run scripts/update-goldens.sh";
+  const ImageDiff result = compare_with_golden(name, actual);
+  ASSERT_TRUE(result.same_size);
+  EXPECT_LE(result.failing_fraction(), kMaxFailingFraction)
+      << result.failing_pixels << " of " << result.total_pixels << " pixels differ by more than "
+      << kChannelTolerance << "/255";
+}
+
 // The comparison must catch real changes: each of these alterations of the notched plate's
 // picture has to fail it.
 class GoldenCatches : public ::testing::Test {
@@ -122,6 +147,14 @@ TEST_F(GoldenCatches, AMissingParticleSet) {
   const Camera camera = fit_camera(*plate_, kWidth, kHeight);
   EXPECT_GT(failing_fraction(render_snapshot_image(without, RenderSettings{}, kWidth, kHeight, &camera)),
             kMaxFailingFraction);
+}
+
+TEST_F(GoldenCatches, AMissingMagnification) {
+  if (updating_goldens()) GTEST_SKIP();
+  // the plate at true scale against the magnified golden
+  const RgbaImage expected = read_png(golden_path("notched_plate_deform100").string());
+  const RgbaImage true_scale = render_snapshot_image(*plate_, magnified_settings(1.0f), kWidth, kHeight);
+  EXPECT_GT(compare_images(expected, true_scale, kChannelTolerance).failing_fraction(), kMaxFailingFraction);
 }
 
 TEST_F(GoldenCatches, AWrongCamera) {

@@ -1,0 +1,32 @@
+// Every key and mouse action of the window, as the F1 help window lists them (docs/gui.md
+// has the same table). Internal to src/app/.
+#pragma once
+
+#include <array>
+
+namespace periflex {
+
+struct KeyHelp {
+  const char* input;
+  const char* action;
+};
+
+inline constexpr std::array<KeyHelp, 15> kKeyHelp = {{
+    {"F1", "show or hide this list"},
+    {"Space", "run / pause"},
+    {"Right arrow", "one step (pauses first; hold to repeat)"},
+    {"Backspace", "reset to t = 0 (keeps the live settings)"},
+    {"F", "fit the view to the scene (and stop following a body)"},
+    {"D", "undeformed shape, and back to the magnification before"},
+    {"S", "screenshot periflex_<scene>_t<time>.png in the current folder"},
+    {"Ctrl+Q", "quit"},
+    {"Right-drag", "pan"},
+    {"Wheel", "zoom about the cursor"},
+    {"Left-drag on a body or particle", "pull it with a spring towards the pointer"},
+    {"Ctrl+click on a slider", "type its value"},
+    {"Enter in a number field", "apply the value typed"},
+    {"Pointer over a panel", "keys and mouse act on the panel, not the picture"},
+    {"Saving the scene file", "reloads it (the view is kept; an error is shown, old scene kept)"},
+}};
+
+}  // namespace periflex

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/parallel_chunks.h"
+#include "pd/row_blocks.h"
 #include "pd/bond_rows.h"
 
 // The portable row loops live here; bond_rows_avx2.cpp and bond_rows_avx512.cpp hold the vector
@@ -17,30 +18,6 @@
 namespace periflex {
 
 namespace {
-
-// Below this many particles a loop runs on one thread: fork and join would cost more than the work.
-constexpr int kParallelMin = 4096;
-
-// Rows per chunk of a parallel loop: large enough that scheduling costs nothing next to the
-// work (about 20 bonds a row: a chunk is some 50 us), small enough that the last chunk leaves
-// the other threads idle only briefly: the glass scene's 36k particles make 36 chunks. With
-// 4096 rows they made 9, one thread took 5 and two threads ran 1.56x faster than one; with
-// 1024, 1.65x. A thread slowed by another process on its core hands its share to the other.
-constexpr int kChunkRows = 1024;
-
-// Calls fn(begin, end) over [0, n) in chunks of kChunkRows handed to the threads as they
-// become free, or once when n is small. Every row is computed the same way whichever thread
-// takes it, so results do not depend on the thread count or the schedule.
-template <typename Fn>
-void for_blocks(int n, Fn&& fn) {
-  if (n < kParallelMin) {
-    fn(0, n);
-    return;
-  }
-  const int chunks = (n + kChunkRows - 1) / kChunkRows;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int c = 0; c < chunks; ++c) fn(c * kChunkRows, std::min(n, (c + 1) * kChunkRows));
-}
 
 // k (1/|xi| - 1/|y|) y = k s y/|y|: one square root and one division per bond, no branch
 // (a broken bond has k = 0). With kTrack the largest stretch over the row's intact bonds
@@ -157,7 +134,7 @@ inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t 
 void row_maxima(const BondStore& bonds, const double* pos, double* out) {
   const Rows r = rows_of(bonds);
   const Isa which = isa();
-  for_blocks(bonds.particle_count(), [&](int begin, int end) {
+  for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
     if (which == Isa::kAvx512) return row_max_stretch_avx512(begin, end, r, pos, out);
 #endif
@@ -193,7 +170,7 @@ void force_loop(const BondStore& bonds, const double* pos, const double* vel, do
                 double* row_max, double* pos_copy, const RowCut* cut) {
   const Rows r = rows_of(bonds);
   const Isa which = isa();
-  for_blocks(bonds.particle_count(), [&](int begin, int end) {
+  for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
     force_rows(begin, end, which, r, pos, vel, eta_over_e, force, row_max, cut);
   });
@@ -286,7 +263,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
   // and the ranges in order, so the energy has the same bits on any thread count
   const Rows r = rows_of(bonds);
   const Isa which = isa();
-  return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
+  return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
     if (which == Isa::kAvx512 && strain_energy_avx512(static_cast<int>(begin), static_cast<int>(end), r, pos, sum))
@@ -308,7 +285,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
 
 double bond_damping_power(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e) {
   // k eta/E |xi| (ds/dt)^2 per pair, half per visit; a fixed-order sum as above
-  return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
+  return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
     for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
       double local = 0.0;

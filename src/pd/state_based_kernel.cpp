@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "core/parallel_chunks.h"
+#include "pd/row_blocks.h"
 #include "pd/state_based_rows.h"
 
 // This file is built with -fno-math-errno (src/CMakeLists.txt) so that the square roots of the
@@ -16,24 +17,6 @@
 namespace periflex {
 
 namespace {
-
-// Below this many particles a loop runs on one thread; rows per chunk of a parallel loop
-// (the same choices as the bond-based loops, for the same reasons).
-constexpr int kParallelMin = 4096;
-constexpr int kChunkRows = 4096;
-
-// fn(begin, end) over [0, n) in fixed chunks handed to the threads as they become free; every
-// row is computed the same way whichever thread takes it.
-template <typename Fn>
-void for_rows(int n, Fn&& fn) {
-  if (n < kParallelMin) {
-    fn(0, n);
-    return;
-  }
-  const int chunks = (n + kChunkRows - 1) / kChunkRows;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int c = 0; c < chunks; ++c) fn(c * kChunkRows, std::min(n, (c + 1) * kChunkRows));
-}
 
 // |xi| of bond b
 inline double ref_length(const BondStore& bonds, int64_t b) { return 1.0 / bonds.inv_length(b); }
@@ -220,7 +203,7 @@ void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
 
 void compute_dilatations(const BondStore& bonds, StateBasedModel& model, const double* pos) {
   const RowLoops& loops = row_loops();
-  for_rows(bonds.particle_count(), [&](int begin, int end) {
+  for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
     loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
                      bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
                      pos, model.dilatation.data(), nullptr);
@@ -236,7 +219,7 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
   // the AVX-512 loops (undamped) when the CPU has them and the class tables fit two registers
   if (use_avx512(bonds) && !(eta_over_e > 0.0)) {
     const double v2 = model.volume * model.volume;
-    for_rows(n, [&](int begin, int end) {
+    for_row_blocks(n, [&](int begin, int end) {
       if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
       lps_extension_sums_avx512(begin, end, bonds, pos, model.dilatation.data(), row_max);
       for (int i = begin; i < end; ++i) {
@@ -247,14 +230,14 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
         model.coef_pairs[2 * i + 1] = model.shear_coef[i];
       }
     });
-    for_rows(n, [&](int begin, int end) {
+    for_row_blocks(n, [&](int begin, int end) {
       lps_forces_avx512(begin, end, bonds, model.coef_pairs.data(), v2, pos, force);
     });
     return;
   }
 #endif
   // pass 1: dilatations (and the row maxima of the stretch), then a_i = (2 kappa - 4 mu) theta_i / m_i
-  for_rows(n, [&](int begin, int end) {
+  for_row_blocks(n, [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
     loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
                      bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
@@ -266,7 +249,7 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
   });
   // pass 2: pair forces, which need a_j of every neighbour, so only after pass 1 has finished
   const double v2 = model.volume * model.volume;
-  for_rows(n, [&](int begin, int end) {
+  for_row_blocks(n, [&](int begin, int end) {
     loops.force(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
                 bonds.inv_length_table.data(), bonds.stiffness.data(), model.bulk_coef.data(), model.shear_coef.data(),
                 v2, pos, eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force);
@@ -275,13 +258,13 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
 
 void state_based_energy_density(const BondStore& bonds, const StateBasedModel& model, const double* pos,
                                 double* out) {
-  for_rows(bonds.particle_count(), [&](int begin, int end) { energy_rows(begin, end, bonds, model, pos, out); });
+  for_row_blocks(bonds.particle_count(), [&](int begin, int end) { energy_rows(begin, end, bonds, model, pos, out); });
 }
 
 double state_based_strain_energy(const BondStore& bonds, const StateBasedModel& model, const double* pos) {
   // rows summed in fixed ranges and the ranges in order: the same bits on any thread count
   std::vector<double> density(bonds.particle_count());
-  return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
+  return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     energy_rows(static_cast<int>(begin), static_cast<int>(end), bonds, model, pos, density.data());
     double sum = 0.0;
     for (int64_t i = begin; i < end; ++i) sum += density[i];
@@ -304,7 +287,7 @@ double state_based_damping_power(const BondStore& bonds, const StateBasedModel& 
                                  const double* vel, double eta_over_e) {
   // each pair is visited from both ends: half per visit
   const double v2 = model.volume * model.volume;
-  return ordered_sum(bonds.particle_count(), kParallelMin, [&](int64_t begin, int64_t end) {
+  return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
     for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {

@@ -82,11 +82,14 @@ struct Simulation::Impl {
   // --- set-up -------------------------------------------------------------------------
   void build_info();
   double allowed_step() const { return scene.solver.dt_safety * critical_step; }
+  // A step above the allowed one by less than the rounding of `check`'s printout (6 significant
+  // digits: up to 5e-6 relative) is the allowed step given back by a user or a script: accepted.
+  bool step_exceeds_allowed(double dt) const { return dt > allowed_step() * (1.0 + 1e-5); }
   bool stability_bound_applies() const {
     return critical_step > 0.0 && integrator->is_explicit() && !integrator->is_adaptive();
   }
   int substeps_for(double h) const {
-    if (!stability_bound_applies() || h <= allowed_step()) return 1;
+    if (!stability_bound_applies() || !step_exceeds_allowed(h)) return 1;
     return static_cast<int>(std::ceil(h / allowed_step() * (1 - 1e-12)));
   }
   std::string stability_message(double dt) const {
@@ -190,7 +193,7 @@ void Simulation::Impl::build_info() {
   // foreseeable trouble
   auto& w = info.warnings;
   w.clear();
-  if (stability_bound_applies() && scene.solver.dt > allowed_step()) {
+  if (stability_bound_applies() && step_exceeds_allowed(scene.solver.dt)) {
     w.push_back(stability_message(scene.solver.dt) +
                 (scene.solver.auto_substep ? "; each step is split into " +
                                                  std::to_string(substeps_for(scene.solver.dt)) + " sub-steps"
@@ -259,7 +262,7 @@ void Simulation::Impl::initialize() {
   // explicit integration of particles is bounded by their critical step: a step the input chose
   // above it is bad input, named where it was set (scene line, --set or --dt); a step changed
   // while running (the GUI's live settings) is a numerical stop
-  if (stability_bound_applies() && live.dt > allowed_step() && !scene.solver.auto_substep) {
+  if (stability_bound_applies() && step_exceeds_allowed(live.dt) && !scene.solver.auto_substep) {
     const std::string remedy = "lower solver.dt below " + number(allowed_step()) + " or set solver.auto_substep = true";
     if (live.dt == scene.solver.dt)
       throw InputError(scene.locate("solver.dt"), stability_message(live.dt) + "; " + remedy);
@@ -829,7 +832,7 @@ void Simulation::apply(const LiveSettings& settings) {
   // try the candidate integrator in place (the stability bound depends on it); a refusal
   // puts the running one back. With the same integrator nothing is swapped.
   if (next) std::swap(next, s.integrator);
-  if (s.stability_bound_applies() && dt > s.allowed_step() && !s.scene.solver.auto_substep) {
+  if (s.stability_bound_applies() && s.step_exceeds_allowed(dt) && !s.scene.solver.auto_substep) {
     const std::string message = s.stability_message(dt);
     if (next) std::swap(next, s.integrator);  // keep the running configuration
     throw InputError({"", 0, 0, "solver.dt"}, message + "; lower it below " + number(s.allowed_step()) +

@@ -229,6 +229,8 @@ void add_time_step(std::vector<StabilityCase>& cases) {
                                 "divergence must be reported");
   pd_at_safety1.sets = {"solver.dt_safety=1"};
   pd_at_safety1.dt_over_critical = 1.0;
+  // quick: the step is the critical step as `check` prints it, which a run must not refuse
+  pd_at_safety1.quick = true;
   cases.push_back(pd_at_safety1);
 
   auto pd_far = refused_step("pd_dt_10x_critical", "time_step", "dt = 10 dt_crit, no sub-stepping", kBlock);

@@ -53,6 +53,7 @@ struct HostileCase {
   std::string expect;              // text the output must contain
   std::vector<std::string> args;   // with placeholders
   std::string scene_file;          // the scene file itself, when the case is one
+  bool needs_cap = false;          // its limit comes from the 2 GB address-space cap ("2*")
 };
 
 // Splits a command line on blanks; single quotes group (and may hold nothing).
@@ -129,6 +130,7 @@ std::vector<HostileCase> load_corpus() {
     HostileCase c;
     c.origin = "commands.txt:" + std::to_string(number);
     c.exit_code = std::stoi(line.substr(0, bar1));
+    c.needs_cap = line.substr(0, bar1).find('*') != std::string::npos;
     c.expect = trim(line.substr(bar1 + 3, bar2 - bar1 - 3));
     c.args = split_arguments(line.substr(bar2 + 3));
     c.name = "line_" + std::to_string(number) + "_" + test_name(c.args.empty() ? "" : c.args.front());
@@ -283,6 +285,8 @@ class HostileInput : public ::testing::TestWithParam<HostileCase> {};
 TEST_P(HostileInput, RefusedLocatedBoundedAndContained) {
   const HostileCase& c = GetParam();
   SCOPED_TRACE(c.origin);
+  // a sanitizer cannot run under the cap, and without it the memory limit is the machine's
+  if (c.needs_cap && kSanitized) GTEST_SKIP() << "the limit this case reaches comes from the address-space cap";
   // a working folder three levels deep, so that "../../../x" still lands inside the sandbox
   const fs::path sandbox = fs::current_path() / ("hostile_run_" + c.name);
   fs::remove_all(sandbox);

@@ -86,13 +86,11 @@ SceneDef benchmark_scene(const std::string& name) {
   return load_scene(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/benchmarks/" + name);
 }
 
-void skip_without_counting() {
-  if (!PERIFLEX_COUNT_ALLOCATIONS) GTEST_SKIP() << "allocation counting is off under a sanitizer";
-}
+constexpr const char* kNoCounting = "allocation counting is off under a sanitizer";
 
 // the counter itself sees an allocation (else a zero below would prove nothing)
 TEST(StepAllocation, CounterSeesAnAllocation) {
-  skip_without_counting();
+  if (!PERIFLEX_COUNT_ALLOCATIONS) GTEST_SKIP() << kNoCounting;
   allocations = 0;
   counting = true;
   auto* p = new std::string(100, 'x');
@@ -102,7 +100,7 @@ TEST(StepAllocation, CounterSeesAnAllocation) {
 }
 
 TEST(StepAllocation, PendulumRk4StepsDoNotAllocate) {
-  skip_without_counting();
+  if (!PERIFLEX_COUNT_ALLOCATIONS) GTEST_SKIP() << kNoCounting;
   SceneDef scene = benchmark_scene("a01_pendulum.toml");
   scene.solver.integrator = "rk4";
   scene.solver.dt = 0.01;
@@ -110,7 +108,7 @@ TEST(StepAllocation, PendulumRk4StepsDoNotAllocate) {
 }
 
 TEST(StepAllocation, DoubleFourBarRk4StepsDoNotAllocate) {
-  skip_without_counting();
+  if (!PERIFLEX_COUNT_ALLOCATIONS) GTEST_SKIP() << kNoCounting;
   const SceneDef scene = benchmark_scene("a02_double_four_bar.toml");
   ASSERT_EQ(scene.solver.integrator, "rk4");
   EXPECT_EQ(allocations_in_steps(scene, 100, 1000), 0);

@@ -43,6 +43,13 @@ constexpr long kElasticCheckInterval = 64;
 // scale, above which the motion is taken to have left its branch (on the double four-bar a
 // passage costs at most a few 1e-6 of the scale; a switch of branch about 1e-2).
 constexpr double kBranchEnergy = 1e-5;
+// Smallest scaled pivot of the acceleration solve (small systems) below which a step counts as
+// passing a singular position even when no row was left out. With Baumgarte correction, or at
+// steps that stride over the dead point, no stage may land within the rank threshold, yet the
+// solve near the position amplifies the drift by 1 / pivot and can carry the motion onto
+// another path. On the double four-bar the pivot falls by about 0.03 per step of 5e-3 s near a
+// dead point, so 0.1 opens a passage a few steps ahead of it at the step sizes in use.
+constexpr double kPassagePivot = 0.1;
 }  // namespace
 
 struct Simulation::Impl {
@@ -68,13 +75,15 @@ struct Simulation::Impl {
   double energy_scale = 0.0;       // for the divergence check
   double critical_step = 0.0;      // min over the flexible bodies (0: none)
   // passages through singular positions (rank monitoring): the energy balance when the rank
-  // first changed, checked when the rank is back, so a jump onto another branch is no silent
+  // first changed or the Jacobian came near losing it, checked when the rank is back and the
+  // position left behind, so a jump onto another branch is no silent one
   struct Passage {
     bool open = false;
     long seen_changes = 0;
     size_t stable_dependent = 0;   // rows dependent outside passages
     double entry_time = 0.0, entry_balance = 0.0;
     std::vector<int> rows;         // every row left out during the passage
+    std::vector<std::string> near_blocks;  // blocks nearly dependent when it opened
   } passage;
   Timing timing;
   mutable std::shared_ptr<const SceneGeometry> geometry;
@@ -492,14 +501,19 @@ void Simulation::Impl::check_divergence() {
 void Simulation::Impl::check_passage() {
   const long changes = dynamics->rank_changes();
   const auto& now = dynamics->dependent_now();
-  if (changes != passage.seen_changes) {
-    // the rank changed during this step: a singular position is near
+  const bool near = dynamics->smallest_pivot() < kPassagePivot;
+  if (changes != passage.seen_changes || near) {
+    // the rank changed during this step, or the Jacobian is close to losing it: a singular
+    // position is near
     passage.seen_changes = changes;
     if (!passage.open) {
       passage.open = true;
       passage.entry_time = time;
       passage.entry_balance = energies().balance;
       passage.rows.clear();
+      // the rows that nearly depend on the others, named even when none was left out
+      passage.near_blocks = near ? dynamics->nearly_dependent_blocks(time, state.q, kPassagePivot)
+                                 : std::vector<std::string>{};
     }
     for (int r : now) {
       if (std::find(passage.rows.begin(), passage.rows.end(), r) == passage.rows.end()) passage.rows.push_back(r);
@@ -517,7 +531,10 @@ void Simulation::Impl::check_passage() {
   const double jump = energies().balance - passage.entry_balance;
   if (std::abs(jump) > kBranchEnergy * energy_scale) {
     std::string names;
-    for (const auto& n : dynamics->blocks_of(passage.rows)) names += (names.empty() ? "'" : ", '") + n + "'";
+    std::vector<std::string> blocks = dynamics->blocks_of(passage.rows);
+    for (const auto& n : passage.near_blocks)
+      if (std::find(blocks.begin(), blocks.end(), n) == blocks.end()) blocks.push_back(n);
+    for (const auto& n : blocks) names += (names.empty() ? "'" : ", '") + n + "'";
     throw NumericalError({"singular configuration", steps, time,
                           "the mechanism passed a singular position between t = " + number(passage.entry_time) +
                               " and " + number(time) + " s (dependent: " + names +

@@ -83,7 +83,7 @@ struct Simulation::Impl {
     size_t stable_dependent = 0;   // rows dependent outside passages
     double entry_time = 0.0, entry_balance = 0.0;
     std::vector<int> rows;         // every row left out during the passage
-    std::vector<std::string> near_blocks;  // blocks nearly dependent when it opened
+    Eigen::VectorXd entry_q;       // positions when it opened
   } passage;
   Timing timing;
   mutable std::shared_ptr<const SceneGeometry> geometry;
@@ -304,6 +304,7 @@ void Simulation::Impl::initialize() {
   integrator->reset();
   passage = Passage{};
   passage.rows.reserve(model->constraint_rows);  // filled while passing a singular position
+  passage.entry_q = state.q;
   passage.seen_changes = dynamics->rank_changes();
   passage.stable_dependent = dynamics->dropped_rows().size();
   initialized = true;
@@ -511,9 +512,9 @@ void Simulation::Impl::check_passage() {
       passage.entry_time = time;
       passage.entry_balance = energies().balance;
       passage.rows.clear();
-      // the rows that nearly depend on the others, named even when none was left out
-      passage.near_blocks = near ? dynamics->nearly_dependent_blocks(time, state.q, kPassagePivot)
-                                 : std::vector<std::string>{};
+      // where it opened (into the kept buffer: no allocation), to name the rows that nearly
+      // depend on the others if the check fails, even when none was left out
+      passage.entry_q = state.q;
     }
     for (int r : now) {
       if (std::find(passage.rows.begin(), passage.rows.end(), r) == passage.rows.end()) passage.rows.push_back(r);
@@ -532,7 +533,7 @@ void Simulation::Impl::check_passage() {
   if (std::abs(jump) > kBranchEnergy * energy_scale) {
     std::string names;
     std::vector<std::string> blocks = dynamics->blocks_of(passage.rows);
-    for (const auto& n : passage.near_blocks)
+    for (const auto& n : dynamics->nearly_dependent_blocks(passage.entry_time, passage.entry_q, kPassagePivot))
       if (std::find(blocks.begin(), blocks.end(), n) == blocks.end()) blocks.push_back(n);
     for (const auto& n : blocks) names += (names.empty() ? "'" : ", '") + n + "'";
     throw NumericalError({"singular configuration", steps, time,

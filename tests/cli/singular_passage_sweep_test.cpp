@@ -72,8 +72,9 @@ void sweep(const std::string& tag, const std::string& shipped_scene, double thet
                                            " --set solver.correction.method=" + correction,
                                        reference, every);
         // the methods recommended for mechanisms carry the motion through every dead point
-        if (correction == "projection" && (integrator == "rk4" || integrator == "dopri54"))
+        if (correction == "projection" && (integrator == "rk4" || integrator == "dopri54")) {
           EXPECT_EQ(o.exit_code, 0) << what << ": " << o.output;
+        }
         if (o.exit_code == 3) {
           // a numerical stop says what failed, when, and what to try
           EXPECT_NE(o.output.find("numerical failure"), std::string::npos) << what << ": " << o.output;

@@ -49,9 +49,14 @@ struct BodyPoint {
   // Row `row` gets sign * c^T dP/dq for a global coefficient vector c.
   void add_gradient(Triplets& out, int row, const Vec2& c, double sign, const Eigen::VectorXd& q) const {
     if (body < 0) return;
+    add_gradient_at(out, row, c, sign, arm(q));
+  }
+  // The same with the global arm given (one rotation per point when several rows need it).
+  void add_gradient_at(Triplets& out, int row, const Vec2& c, double sign, const Vec2& global_arm) const {
+    if (body < 0) return;
     put_entry(out, row, x_index(), sign * c.x());
     put_entry(out, row, y_index(), sign * c.y());
-    put_entry(out, row, phi_index(), sign * c.dot(perp(arm(q))));
+    put_entry(out, row, phi_index(), sign * c.dot(perp(global_arm)));
   }
   // Adds sign * F applied at the point to the generalised forces g (force and moment about r).
   void add_force(Eigen::VectorXd& g, const Vec2& force, double sign, const Eigen::VectorXd& q) const {

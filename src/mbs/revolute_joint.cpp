@@ -17,11 +17,12 @@ void RevoluteJoint::residual(const Eigen::VectorXd& q, double, double* phi) cons
 }
 
 void RevoluteJoint::jacobian(const Eigen::VectorXd& q, double, int row0, Triplets& out) const {
-  // each row is one global component of P_i - P_j
+  // each row is one global component of P_i - P_j; each arm rotated once for both rows
+  const Vec2 arm_i = p_i_.arm(q), arm_j = p_j_.arm(q);
   for (int k = 0; k < 2; ++k) {
     const Vec2 c = k == 0 ? Vec2::UnitX() : Vec2::UnitY();
-    p_i_.add_gradient(out, row0 + k, c, 1.0, q);
-    p_j_.add_gradient(out, row0 + k, c, -1.0, q);
+    p_i_.add_gradient_at(out, row0 + k, c, 1.0, arm_i);
+    p_j_.add_gradient_at(out, row0 + k, c, -1.0, arm_j);
   }
 }
 

@@ -10,7 +10,9 @@ void DenseConstraintSolver::resize(int n, int m) {
   n_ = n;
   m_ = m;
   j_.setZero(m, n);
-  a_.resize(n, m);
+  v_.resize(n);
+  null_.resize(n, n);
+  reduced_.resize(n, n);
   qr_.resize(n, m);
   tau_.resize(std::min(n, m));
   norm2_.resize(m);
@@ -61,14 +63,20 @@ bool DenseConstraintSolver::factorize(const double* w, const double* select, dou
     positive_ = positive_ && w[c] == select[c];
   }
   for (int r = 0; r < m_; ++r) {
-    for (int c = 0; c < n_; ++c) a_(c, r) = j_(r, c) * s_[c];
-    rho_[r] = a_.col(r).norm();
-    if (rho_[r] > 0.0) a_.col(r) /= rho_[r];
+    double norm2 = 0.0;
+    for (int c = 0; c < n_; ++c) {
+      qr_(c, r) = j_(r, c) * s_[c];
+      norm2 += qr_(c, r) * qr_(c, r);
+    }
+    rho_[r] = std::sqrt(norm2);
+    if (rho_[r] > 0.0) {
+      const double inverse = 1.0 / rho_[r];
+      for (int c = 0; c < n_; ++c) qr_(c, r) *= inverse;
+    }
   }
   // Householder QR with column pivoting: at each step the column with the largest remaining
   // norm among the rows not marked late, then among the late ones; stop when none is above
   // the threshold (the rest depend on the columns taken)
-  qr_ = a_;
   for (int r = 0; r < m_; ++r) {
     perm_[r] = r;
     norm2_[r] = rho_[r] > 0.0 ? 1.0 : 0.0;
@@ -130,14 +138,12 @@ bool DenseConstraintSolver::factorize(const double* w, const double* select, dou
   // massless direction escapes every selected row (then the solve is refused)
   const int p = n_ - rank_;
   for (int c = 0; c < n_; ++c) d_[c] = w[c] * s_[c] * s_[c];
-  null_.resize(n_, p);
   for (int j = 0; j < p; ++j) {
     e_.setZero();
     e_[rank_ + j] = 1.0;
     apply_q(e_, rank_);
     null_.col(j) = e_;
   }
-  reduced_.resize(p, p);
   for (int i = 0; i < p; ++i) {
     for (int j = 0; j <= i; ++j) {
       double v = 0.0;
@@ -146,11 +152,23 @@ bool DenseConstraintSolver::factorize(const double* w, const double* select, dou
     }
   }
   if (p == 0) return true;
-  reduced_llt_.compute(reduced_);
-  if (reduced_llt_.info() != Eigen::Success) return false;
-  // a pivot at round-off level of the largest weight: a massless direction no row holds
+  // Cholesky in place (lower triangle), written out: the matrix has a handful of rows, where a
+  // general blocked factorisation costs more in set-up than in arithmetic. A pivot at round-off
+  // level of the largest weight: a massless direction no row holds.
   const double floor = 16.0 * std::numeric_limits<double>::epsilon() * std::max(1.0, d_.maxCoeff()) * n_;
-  return (reduced_llt_.matrixLLT().diagonal().array().square() > floor).all();
+  for (int j = 0; j < p; ++j) {
+    double pivot = reduced_(j, j);
+    for (int k = 0; k < j; ++k) pivot -= reduced_(j, k) * reduced_(j, k);
+    if (!(pivot > floor)) return false;
+    const double root = std::sqrt(pivot);
+    reduced_(j, j) = root;
+    for (int i = j + 1; i < p; ++i) {
+      double v = reduced_(i, j);
+      for (int k = 0; k < j; ++k) v -= reduced_(i, k) * reduced_(j, k);
+      reduced_(i, j) = v / root;
+    }
+  }
+  return true;
 }
 
 void DenseConstraintSolver::solve(const double* a, const double* e, double* z, double* mu) {
@@ -170,9 +188,20 @@ void DenseConstraintSolver::solve(const double* a, const double* e, double* z, d
     const int p = n_ - rank_;
     if (p > 0) {
       for (int c = 0; c < n_; ++c) c_[c] = b_[c] - d_[c] * x_[c];
-      v_.noalias() = null_.transpose() * c_;
-      reduced_llt_.solveInPlace(v_);
-      x_.noalias() += null_ * v_;
+      // v = N^T c, then L L^T v = v (forward and back substitution), then x += N v
+      for (int j = 0; j < p; ++j) {
+        double v = 0.0;
+        for (int c = 0; c < n_; ++c) v += null_(c, j) * c_[c];
+        for (int k = 0; k < j; ++k) v -= reduced_(j, k) * v_[k];
+        v_[j] = v / reduced_(j, j);
+      }
+      for (int j = p - 1; j >= 0; --j) {
+        double v = v_[j];
+        for (int k = j + 1; k < p; ++k) v -= reduced_(k, j) * v_[k];
+        v_[j] = v / reduced_(j, j);
+      }
+      for (int j = 0; j < p; ++j)
+        for (int c = 0; c < n_; ++c) x_[c] += null_(c, j) * v_[j];
     }
     // multipliers: R11 mu~ = Q1^T (b - D x)
     for (int c = 0; c < n_; ++c) c_[c] = b_[c] - d_[c] * x_[c];

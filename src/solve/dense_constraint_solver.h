@@ -50,7 +50,7 @@ class DenseConstraintSolver {
   int n_ = 0, m_ = 0, rank_ = 0;
   bool positive_ = true;
   double smallest_pivot_ = 1.0;
-  Eigen::MatrixXd j_, a_;
+  Eigen::MatrixXd j_;
   Eigen::VectorXd s_, rho_, b_, c_, x_;
   Eigen::MatrixXd qr_;               // Householder vectors below the diagonal, R above
   Eigen::VectorXd tau_, norm2_;      // reflector factors; remaining squared column norms
@@ -59,10 +59,10 @@ class DenseConstraintSolver {
   // Applies H_{count-1} ... H_0 (transpose) or H_0 ... H_{count-1} to v.
   void apply_q_transpose(Eigen::VectorXd& v, int count) const;
   void apply_q(Eigen::VectorXd& v, int count) const;
-  // massless coordinates: D = W S^2, the null-space basis N = Q2 and N^T D N (Cholesky)
+  // massless coordinates: D = W S^2, the null-space basis N = Q2 (its first n - rank columns)
+  // and N^T D N, factorised in place (its lower triangle holds L of L L^T); kept n x n
   Eigen::VectorXd d_, e_, v_;
   Eigen::MatrixXd null_, reduced_;
-  Eigen::LLT<Eigen::MatrixXd> reduced_llt_;
   std::vector<int> selected_, dependent_;
 };
 

@@ -432,14 +432,15 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
   const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
 
   // with fracture on the force loop also sees the stretch: an evaluation that breaks bonds leaves
-  // out those past s0; one that holds every bond leaves the row maxima for update_fracture.
-  // Either way it copies the positions it saw, chunk by chunk.
+  // out those past s0; one that holds every bond leaves the row maxima for update_fracture and
+  // copies the positions it saw, chunk by chunk, so update_fracture knows they are its own.
   const double* pos = m.pos(q);
   const double* vel = qd.data() + m.offset;
   if (m.tracks_stretch()) {
-    m.stretch_cache_pos.resize(2 * m.n());
-    m.stretch_cache_valid = true;
-    double* seen = m.stretch_cache_pos.data();
+    const bool breaking_here = !m.state_based && m.break_timing == BreakTiming::kInEvaluation;
+    if (!breaking_here) m.stretch_cache_pos.resize(2 * m.n());
+    m.stretch_cache_valid = !breaking_here;
+    double* seen = breaking_here ? nullptr : m.stretch_cache_pos.data();
     if (m.state_based) {
       // state-based bonds break after the step (update_fracture), from these row maxima
       m.stretch_cache_most.resize(m.n());
@@ -524,25 +525,31 @@ double PdBody::external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& q
   return power;
 }
 
-FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
+bool PdBody::breaks_in_evaluation() const {
+  return impl_->tracks_stretch() && !impl_->state_based && impl_->break_timing == BreakTiming::kInEvaluation;
+}
+
+FractureUpdate PdBody::take_evaluation_breaks() {
   Impl& m = *impl_;
   FractureUpdate update;
-  // what the force evaluations since the last update broke (their forces are without them)
   update.bonds_broken = m.pending_broken;
   update.energy_released = m.pending_energy;
   m.pending_broken = 0;
   m.pending_energy = 0.0;
+  return update;
+}
+
+FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
+  Impl& m = *impl_;
+  // what the force evaluations since the last update broke (their forces are without them)
+  FractureUpdate update = take_evaluation_breaks();
   if (!m.fracture || !std::isfinite(m.s0)) return update;
   const uint8_t* no_fail = m.def.no_fail_regions.empty() ? nullptr : m.no_fail.data();
-  // did the last force evaluation see exactly these positions?
-  const bool same = m.stretch_cache_valid &&
-                    std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
+  // the bonds break here: from the row maxima of the last force evaluation (which held every
+  // bond) when it saw exactly these positions
+  const bool cached = m.stretch_cache_valid &&
+                      std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
   m.stretch_cache_valid = false;
-  // a bond-based evaluation that broke bonds at these positions left none past s0 (state-based
-  // evaluations hold every bond: their bonds break here)
-  if (same && !m.state_based && m.break_timing == BreakTiming::kInEvaluation) return update;
-  // otherwise break them now, reusing the row maxima of an evaluation that held every bond
-  const bool cached = same && (m.state_based || m.break_timing == BreakTiming::kAfterStep);
   // state-based: the strain energy does not split into bonds, but a broken bond changes the energy
   // of its two ends only, and both are rows whose largest stretch is near s0 (outside no-fail
   // regions): the energy released is the energy of those rows before minus after

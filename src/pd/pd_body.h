@@ -69,6 +69,13 @@ class PdBody : public ForceElement {
   // evaluation broke yet, and reports the bonds the evaluations since the last call broke.
   // Called once per accepted step, and only when fracture is on.
   FractureUpdate update_fracture(const Eigen::VectorXd& q);
+  // Bond-based bonds breaking in the force evaluation (fracture on): a bond past s0 at positions
+  // no evaluation has seen yet (after a drift or a projection) breaks in the first evaluation that
+  // sees it and takes no part in its forces, exactly as a break after the step would. The solver
+  // then only collects what the evaluations broke (take_evaluation_breaks): no pass over the
+  // bonds or positions on one thread between two parallel loops.
+  bool breaks_in_evaluation() const;
+  FractureUpdate take_evaluation_breaks();
   // When a bond past s0 breaks; the solver sets it for its integrator (docs/peridynamics.md §3).
   enum class BreakTiming {
     kInEvaluation,  // in the force evaluation that first sees it, which it takes no part in (the

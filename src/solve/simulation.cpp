@@ -62,6 +62,11 @@ struct Simulation::Impl {
 
   OdeState state;
   OdeState saved;                  // the state before the step in progress (kept allocated)
+  // the state check_divergence passed, copied in its pass over the coordinates: the next step's
+  // `saved` once the step is accepted (a swap, not a copy). saved_current: `saved` is the state
+  // as it stands (false after anything outside a step changed it)
+  OdeState checked;
+  bool saved_current = false;
   OdeState step_start, unprojected;  // positions at the step's start and before its projection (SHAKE)
   std::vector<double> chunk_sums;  // partial sums of check_divergence, per chunk
   double time = 0.0;               // clock.time(), or the exact time a step landed on
@@ -259,6 +264,7 @@ void Simulation::Impl::check_contact_steps() const {
 void Simulation::Impl::initialize() {
   state.q = model->q0;
   state.qd = model->qd0;
+  saved_current = false;
   state.work.setZero();
   time = 0.0;
   clock.reset(0.0, live.dt);
@@ -312,15 +318,18 @@ void Simulation::Impl::initialize() {
 
 void Simulation::Impl::advance(double t_end) {
   const double h = t_end - time;
-  // keep the last good state: nothing non-finite leaves the solver
-  // copies into the kept buffers: no allocation per step
-  saved.q.resize(state.q.size());
-  saved.qd.resize(state.qd.size());
-  parallel_chunks(state.q.size(), [&](int64_t, int64_t begin, int64_t end) {
-    std::copy(state.q.data() + begin, state.q.data() + end, saved.q.data() + begin);
-    std::copy(state.qd.data() + begin, state.qd.data() + end, saved.qd.data() + begin);
-  });
-  saved.work = state.work;
+  // keep the last good state: nothing non-finite leaves the solver. After an accepted step the
+  // divergence check has copied it already; otherwise copy into the kept buffers (no allocation)
+  if (!saved_current) {
+    saved.q.resize(state.q.size());
+    saved.qd.resize(state.qd.size());
+    parallel_chunks(state.q.size(), [&](int64_t, int64_t begin, int64_t end) {
+      std::copy(state.q.data() + begin, state.q.data() + end, saved.q.data() + begin);
+      std::copy(state.qd.data() + begin, state.qd.data() + end, saved.qd.data() + begin);
+    });
+    saved.work = state.work;
+  }
+  saved_current = false;
   const double saved_time = time;
   const auto start = Clock::now();
   const double forces0 = dynamics->force_seconds(), constraints0 = dynamics->constraint_seconds();
@@ -371,7 +380,8 @@ void Simulation::Impl::advance(double t_end) {
         const auto fracture_start = Clock::now();
         for (auto& flex : model->flex_bodies) {
           if (!flex->fracture_enabled()) continue;
-          const FractureUpdate update = flex->update_fracture(state.q);
+          const FractureUpdate update =
+              flex->breaks_in_evaluation() ? flex->take_evaluation_breaks() : flex->update_fracture(state.q);
           fracture_energy += update.energy_released;
           broken_bonds += update.bonds_broken;
           if (update.forces_stale) integrator->reset();
@@ -382,6 +392,11 @@ void Simulation::Impl::advance(double t_end) {
     ++steps;
     check_divergence();
     if (dynamics->monitors_rank()) check_passage();
+    // accepted: the state the check copied is the next step's fallback
+    std::swap(saved.q, checked.q);
+    std::swap(saved.qd, checked.qd);
+    saved.work = state.work;
+    saved_current = true;
   } catch (const NumericalError& error) {
     NumericalDiagnostic d = error.diagnostic();
     if (d.step < 0) d.step = steps + 1;
@@ -420,11 +435,18 @@ void Simulation::Impl::check_divergence() {
   const double* pq = state.q.data();
   const double* pv = state.qd.data();
   const double* pm = model->mass.data();
+  // the same pass copies the state, for the next step's fallback once this one is accepted
+  checked.q.resize(n);
+  checked.qd.resize(n);
+  double* cq = checked.q.data();
+  double* cv = checked.qd.data();
   chunk_sums.assign(3 * chunk_count(n), 0.0);
   parallel_chunks(n, [&](int64_t chunk, int64_t begin, int64_t end) {
     double q_zero = 0.0, v_zero = 0.0, twice_kinetic = 0.0;
 #pragma omp simd reduction(+ : q_zero, v_zero, twice_kinetic)
     for (int64_t i = begin; i < end; ++i) {
+      cq[i] = pq[i];
+      cv[i] = pv[i];
       q_zero += pq[i] * 0.0;
       v_zero += pv[i] * 0.0;
       twice_kinetic += pm[i] * pv[i] * pv[i];
@@ -480,7 +502,16 @@ void Simulation::Impl::check_divergence() {
   // a body falling far has turned that much potential of gravity into motion: not a divergence
   // (computed only when the cheap bound fails: it costs a pass over the coordinates)
   const auto released = [&] { return std::max(0.0, initial_gravity - gravity_energy()); };
-  if (mechanical > kEnergyGrowth * available && mechanical > kEnergyGrowth * (available + released())) {
+  // the work loads did over the step just taken, which the accounts may not hold yet (symplectic
+  // Euler books a step's work at the velocities it started from: none, for loads on a body at rest)
+  const auto fed_in_step = [&] {
+    double power = 0.0;
+    for (const auto& f : model->forces) power += std::abs(f->external_power(state.q, state.qd, time));
+    for (const auto& flex : model->flex_bodies) power += std::abs(flex->external_power(state.q, state.qd, time));
+    return live.dt * power;
+  };
+  if (mechanical > kEnergyGrowth * available &&
+      mechanical > kEnergyGrowth * (available + released() + fed_in_step())) {
     // explicit damping forces are themselves unstable once damping * dt is of order 1
     std::string damped;
     for (const auto& flex : model->flex_bodies) {

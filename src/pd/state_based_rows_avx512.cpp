@@ -49,18 +49,26 @@ struct Block {
   __m512d w;        // bond weight, 0 once broken or masked
 };
 
+// kOffsets: neighbours read as 16-bit offsets j - i, half the bytes of the 32-bit indices (the
+// loops stream the bond arrays twice a step, so the bytes count)
+template <bool kOffsets>
 PERIFLEX_LPS_AVX512 inline Block load_block(const BondStore& bonds, int64_t b, int64_t last, int i) {
   Block k;
   const int64_t left = last - b;
   k.mask = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
-  const __m256i j = _mm256_mask_loadu_epi32(_mm256_set1_epi32(i), k.mask, bonds.neighbor.data() + b);
+  __m256i j;
+  if constexpr (kOffsets)
+    j = _mm256_add_epi32(_mm256_cvtepi16_epi32(_mm_maskz_loadu_epi16(k.mask, bonds.neighbor_offset.data() + b)),
+                         _mm256_set1_epi32(i));
+  else
+    j = _mm256_mask_loadu_epi32(_mm256_set1_epi32(i), k.mask, bonds.neighbor.data() + b);
   k.twice_j = _mm256_slli_epi32(j, 1);
   k.cls = _mm512_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(k.mask), bonds.length_class.data() + b));
   k.w = _mm512_cvtps_pd(_mm256_maskz_loadu_ps(k.mask, bonds.stiffness.data() + b));
   return k;
 }
 
-template <bool kTrack>
+template <bool kTrack, bool kOffsets>
 PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bonds, const double* __restrict pos,
                                         double* __restrict sum, double* __restrict most) {
   const ClassTables t = class_tables(bonds);
@@ -70,7 +78,7 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
     __m512d acc = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     const int64_t last = bonds.row[i + 1];
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
-      const Block k = load_block(bonds, b, last, i);
+      const Block k = load_block<kOffsets>(bonds, b, last, i);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos, 8), xi);
       const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos + 1, 8), yi);
       const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
@@ -93,14 +101,22 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
 
 PERIFLEX_LPS_AVX512 void lps_extension_sums_avx512(int begin, int end, const BondStore& bonds, const double* pos,
                                                    double* sum, double* most) {
-  if (most)
-    extension_sums<true>(begin, end, bonds, pos, sum, most);
+  const bool offsets = !bonds.neighbor_offset.empty();
+  if (most && offsets)
+    extension_sums<true, true>(begin, end, bonds, pos, sum, most);
+  else if (most)
+    extension_sums<true, false>(begin, end, bonds, pos, sum, most);
+  else if (offsets)
+    extension_sums<false, true>(begin, end, bonds, pos, sum, most);
   else
-    extension_sums<false>(begin, end, bonds, pos, sum, most);
+    extension_sums<false, false>(begin, end, bonds, pos, sum, most);
 }
 
-PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* __restrict ab,
-                                           double v2, const double* __restrict pos, double* __restrict force) {
+namespace {
+
+template <bool kOffsets>
+PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, const double* __restrict ab, double v2,
+                                const double* __restrict pos, double* __restrict force) {
   const ClassTables t = class_tables(bonds);
   const __m512d one = _mm512_set1_pd(1.0);
   for (int i = begin; i < end; ++i) {
@@ -109,7 +125,7 @@ PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& 
     __m512d fx = _mm512_setzero_pd(), fy = _mm512_setzero_pd();
     const int64_t last = bonds.row[i + 1];
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
-      const Block k = load_block(bonds, b, last, i);
+      const Block k = load_block<kOffsets>(bonds, b, last, i);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos, 8), xi);
       const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos + 1, 8), yi);
       const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
@@ -128,6 +144,16 @@ PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& 
     force[2 * i] += v2 * _mm512_reduce_add_pd(fx);
     force[2 * i + 1] += v2 * _mm512_reduce_add_pd(fy);
   }
+}
+
+}  // namespace
+
+PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* ab, double v2,
+                                           const double* pos, double* force) {
+  if (!bonds.neighbor_offset.empty())
+    forces<true>(begin, end, bonds, ab, v2, pos, force);
+  else
+    forces<false>(begin, end, bonds, ab, v2, pos, force);
 }
 
 }  // namespace periflex

@@ -646,7 +646,7 @@ size_t PdBody::memory_bytes() const {
                                       m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity() +
                                       m.lps.weighted_volume.capacity() + m.lps.shear_coef.capacity() + m.lps.shear_modulus.capacity() +
                                       m.lps.bulk_coef.capacity() + m.lps.dilatation.capacity() +
-                                      m.lps.coef_pairs.capacity();
+                                      m.lps.records.capacity();
   const size_t per_particle_bytes = m.no_fail.capacity() + m.row_broke.capacity();
   return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
          (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + per_particle_bytes;

@@ -196,7 +196,7 @@ void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
   model.shear_coef.assign(n, 0.0);
   model.bulk_coef.assign(n, 0.0);
   model.dilatation.assign(n, 0.0);
-  model.coef_pairs.assign(2 * static_cast<size_t>(n), 0.0);
+  model.records.assign(4 * static_cast<size_t>(n), 0.0);
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;
   refresh_weighted_volumes(bonds, model, all);
@@ -229,12 +229,15 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
         const double m = model.weighted_volume[i];
         model.dilatation[i] = m > 0.0 ? 2.0 * model.volume * model.dilatation[i] / m : 0.0;
         model.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * model.dilatation[i] / m : 0.0;
-        model.coef_pairs[2 * i] = model.bulk_coef[i];
-        model.coef_pairs[2 * i + 1] = model.shear_coef[i];
+        double* record = model.records.data() + 4 * static_cast<int64_t>(i);
+        record[0] = pos[2 * i];
+        record[1] = pos[2 * i + 1];
+        record[2] = model.bulk_coef[i];
+        record[3] = model.shear_coef[i];
       }
     });
     for_row_blocks(n, [&](int begin, int end) {
-      lps_forces_avx512(begin, end, bonds, model.coef_pairs.data(), v2, pos, force);
+      lps_forces_avx512(begin, end, bonds, model.records.data(), v2, force);
     });
     return;
   }

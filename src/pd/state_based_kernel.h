@@ -25,7 +25,7 @@ struct StateBasedModel {
   std::vector<double> shear_coef;        // b_i = 8 mu_i / m_i (0 without intact bonds)
   std::vector<double> bulk_coef;         // a_i of the last force evaluation (scratch)
   std::vector<double> dilatation;        // theta_i of the last dilatation pass (scratch)
-  std::vector<double> coef_pairs;        // [a_0 b_0 a_1 b_1 ...] (scratch): one cache line per neighbour
+  std::vector<double> records;           // [x_0 y_0 a_0 b_0 x_1 ...] (scratch): a neighbour in one 32-byte load
 };
 
 // Allows (default) or forbids the hand-written AVX-512 row loops; without them the compiled

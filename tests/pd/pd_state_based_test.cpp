@@ -5,6 +5,7 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "pd/pd_body.h"
@@ -171,6 +172,7 @@ TEST(PdStateBased, PoissonRatioFromUniaxialTension) {
       ASSERT_GT(strain[0], 0.0);
       const double r = -strain[1] / strain[0];
       const double recovered = plane_strain ? r / (1 + r) : r;
+      std::printf("%s nu %.2f: recovered %.4f\n", plane_strain ? "plane strain" : "plane stress", nu, recovered);
       EXPECT_NEAR(recovered, nu, 0.015) << (plane_strain ? "plane strain" : "plane stress") << " nu " << nu;
     }
   }

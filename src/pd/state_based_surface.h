@@ -5,8 +5,9 @@
 // method in the spirit of Le & Bobaru 2018, docs/peridynamics.md section 12):
 //  * bond weights: per particle an x and a y factor, a bond taking the mean of its two ends' and
 //    combining them along its direction n as G = ((n_x / G_x)^2 + (n_y / G_y)^2)^(-1/2), found by a
-//    fixed-point iteration that makes every particle's weighted second moments sum_j w |xi|^2 n n^T
-//    isotropic: the dilatation is then exact for any strain with axes along the grid, at an edge too;
+//    fixed-point iteration that makes the weighted second moments sum_j w |xi|^2 n n^T of every
+//    particle with a truncated family isotropic (to 1e-6): the dilatation is then exact for any
+//    strain with axes along the grid, at an edge too;
 //  * a per-particle shear modulus mu_i = mu s_i that gives the deviatoric energy of the continuum,
 //    2 mu g^2, as the mean over pure shear along the axes and along the diagonals.
 // Both are exactly 1 for a full family (its moments are isotropic, and the mean of the two shears

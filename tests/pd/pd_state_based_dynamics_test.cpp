@@ -51,7 +51,7 @@ double column_velocity(const PdBody& body, const Eigen::VectorXd& qd, double at,
 // A strip 300 x 30 particles pushed at its left end with a velocity ramped to v0 over 10 us: the
 // middle of the front (mean column velocity v0 / 2) travels at the plane-stress bar speed
 // sqrt(E / rho), whatever nu, for wavelengths long against the strip's width. Timed between two
-// columns 0.2 m apart, which cancels the ramp and the start-up. Measured -0.6% with the surface
+// columns 0.2 m apart, which cancels the ramp and the start-up. Measured -0.85% with the surface
 // correction (+1.0% without it: the edge layers, one horizon deep on either side, were stiffer);
 // tolerance 3%: the lattice dispersion of the front's middle (the bond-based strip is within 0.1%)
 // and what remains of the edge layers (docs/peridynamics.md section 12).
@@ -142,7 +142,8 @@ double plane_wave_speed(bool shear, bool plane_strain) {
 // stiffness is 2.3 % above mu for shear along the axes (which a P wave along x carries) and 2.3 %
 // below for shear along the diagonals (which an S wave along x is), moving c_P by about +0.4 %
 // and c_S by about -1.2 %; the front's middle adds lattice dispersion of a few tenths of a percent.
-// Measured (plane stress / plane strain): c_P +0.45 % / +0.32 %, c_S -1.47 % / -1.48 %.
+// Measured (plane stress / plane strain): c_P +0.08 % / -0.10 %, c_S -1.50 % / -1.52 %; without the
+// surface correction c_P was +3.0 % / +3.2 %.
 // The S wave at nu = 0.3 is 41 % slower than the P wave, so a model with one wave speed fails.
 TEST(PdStateBasedWaves, PAndSWaveSpeedsMatchTheContinuum) {
   test::SerialScope serial;
@@ -164,7 +165,7 @@ TEST(PdStateBasedWaves, PAndSWaveSpeedsMatchTheContinuum) {
 // of its first clamped-free mode: the period between the first and third zero crossings of the tip
 // against Euler-Bernoulli, f1 = 1.8751^2 / (2 pi L^2) sqrt(E h^2 / (12 rho)). Tolerance 5% (the
 // bond-based test's): shear and rotary inertia at L/h = 15 (about 1%), the clamp's width, and here
-// the edge layers, which carry the bending stress (each 3 of the 8 rows). Measured -3.7% with the
+// the edge layers, which carry the bending stress (each 3 of the 8 rows). Measured -3.4% with the
 // surface correction (the bond-based beam: -3.5%); +4.9% without it, the edge layers too stiff.
 TEST(PdStateBasedVibration, CantileverVibratesAtFirstEulerBernoulliFrequency) {
   test::SerialScope serial;

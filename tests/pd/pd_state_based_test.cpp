@@ -269,7 +269,7 @@ double rim_hoop_strain(const std::vector<double>& x, const std::vector<int>& rim
 // surface correction) with a hole of radius 5 spacings is pulled by equal and opposite forces on
 // its end columns, and the concentration E eps / sigma is measured from displacements only: those
 // of the particles within one spacing of the hole's edge, taken as the edge (rim_hoop_strain).
-// Measured 3.005; without the surface correction 2.684 (the rim too stiff along itself), and a
+// Measured 3.015; without the surface correction 2.684 (the rim too stiff along itself), and a
 // bond-based body 2.916. Tolerance 5 %: the finite width raises the concentration by about 3 %
 // (Heywood's formula at d / W = 1 / 6: 3.10), and the rim particles lie between a and a + dx
 // (a first-order choice in dx / a), against a peak the horizon of 3 spacings smooths.

@@ -13,6 +13,7 @@
 #include "pd/pd_material.h"
 #include "pd/state_based_kernel.h"
 #include "pd/state_based_material.h"
+#include "pd/state_based_surface.h"
 
 namespace periflex {
 
@@ -199,13 +200,33 @@ struct PdBody::Impl {
   }
 
   // State-based bonds carry their weight w beta = k0 / (c V^2) (identical in both directions, as
-  // k0 is); the weighted volumes follow from them. The energy-method factors of set_stiffness are
-  // not applied: m_i summed over the particle's own (truncated) family already keeps the
-  // dilatation of an isotropic expansion exact at a free edge.
+  // k0 is), times the LPS surface correction's bond factor when surface_correction is on
+  // (state_based_surface.h: the energy-method factors of set_stiffness do not apply to the LPS,
+  // whose energy does not change when all of a particle's weights scale alike); the weighted
+  // volumes follow from them.
   void set_state_weights(const std::vector<double>& k0) {
     const double v = volume.front();
+    std::vector<double> weight(k0.size());
+    for (size_t b = 0; b < k0.size(); ++b) weight[b] = k0[b] / (c * v * v);
+    lps.shear_modulus.assign(n(), lps.mu);
+    if (def.surface_correction) {
+      // reference unit vectors from the integer grid offsets
+      std::vector<double> nx(k0.size()), ny(k0.size());
+      for (int i = 0; i < n(); ++i) {
+        for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+          const int32_t j = bonds.neighbor[b];
+          const double di = grid.ix[j] - grid.ix[i], dj = grid.iy[j] - grid.iy[i];
+          const double r = std::sqrt(di * di + dj * dj);
+          nx[b] = di / r;
+          ny[b] = dj / r;
+        }
+      }
+      const LpsSurfaceFactors factors = lps_surface_factors(bonds, weight, nx, ny);
+      for (size_t b = 0; b < k0.size(); ++b) weight[b] *= factors.bond[b];
+      for (int i = 0; i < n(); ++i) lps.shear_modulus[i] = lps.mu * factors.shear[i];
+    }
     bonds.stiffness.resize(k0.size());
-    for (size_t b = 0; b < k0.size(); ++b) bonds.stiffness[b] = static_cast<float>(k0[b] / (c * v * v));
+    for (size_t b = 0; b < k0.size(); ++b) bonds.stiffness[b] = static_cast<float>(weight[b]);
     update_weighted_volumes(bonds, lps);
   }
 
@@ -630,9 +651,9 @@ size_t PdBody::memory_bytes() const {
   const size_t per_particle_doubles = m.reference.capacity() + m.mass.capacity() + m.volume.capacity() +
                                       m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity() +
                                       m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity() +
-                                      m.lps.weighted_volume.capacity() + m.lps.shear_coef.capacity() +
+                                      m.lps.weighted_volume.capacity() + m.lps.shear_coef.capacity() + m.lps.shear_modulus.capacity() +
                                       m.lps.bulk_coef.capacity() + m.lps.dilatation.capacity() +
-                                      m.lps.coef_pairs.capacity();
+                                      m.lps.records.capacity();
   const size_t per_particle_bytes = m.no_fail.capacity() + m.row_broke.capacity();
   return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
          (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + per_particle_bytes;

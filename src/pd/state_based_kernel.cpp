@@ -169,7 +169,7 @@ void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedMod
       const double ed = std::sqrt(dx * dx + dy * dy) - x0 - 0.5 * theta * x0;
       dev += double(bonds.stiffness[b]) * ed * ed;
     }
-    out[i] = 0.5 * model.kappa * theta * theta + 4.0 * model.mu / m * model.volume * dev;
+    out[i] = 0.5 * model.kappa * theta * theta + 4.0 * model.shear_modulus[i] / m * model.volume * dev;
   }
 }
 
@@ -185,17 +185,18 @@ void refresh_weighted_volumes(const BondStore& bonds, StateBasedModel& model, co
       sum += double(bonds.stiffness[b]) * x0 * x0;
     }
     model.weighted_volume[i] = model.volume * sum;
-    model.shear_coef[i] = sum > 0.0 ? 8.0 * model.mu / model.weighted_volume[i] : 0.0;
+    model.shear_coef[i] = sum > 0.0 ? 8.0 * model.shear_modulus[i] / model.weighted_volume[i] : 0.0;
   }
 }
 
 void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
   const int n = bonds.particle_count();
+  if (model.shear_modulus.size() != static_cast<size_t>(n)) model.shear_modulus.assign(n, model.mu);
   model.weighted_volume.assign(n, 0.0);
   model.shear_coef.assign(n, 0.0);
   model.bulk_coef.assign(n, 0.0);
   model.dilatation.assign(n, 0.0);
-  model.coef_pairs.assign(2 * static_cast<size_t>(n), 0.0);
+  model.records.assign(4 * static_cast<size_t>(n), 0.0);
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;
   refresh_weighted_volumes(bonds, model, all);
@@ -213,7 +214,9 @@ void compute_dilatations(const BondStore& bonds, StateBasedModel& model, const d
 void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, const double* pos, const double* vel,
                             double eta_over_e, double* force, double* row_max, double* pos_copy) {
   const int n = bonds.particle_count();
-  const double bulk = 2.0 * model.kappa - 4.0 * model.mu;
+  // a_i = (2 kappa - 4 mu_i) theta_i / m_i
+  const double twice_kappa = 2.0 * model.kappa;
+  const double* mu = model.shear_modulus.data();
   const RowLoops& loops = row_loops();
 #ifdef PERIFLEX_HAVE_LPS_AVX512
   // the AVX-512 loops (undamped) when the CPU has them and the class tables fit two registers
@@ -225,13 +228,16 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
       for (int i = begin; i < end; ++i) {
         const double m = model.weighted_volume[i];
         model.dilatation[i] = m > 0.0 ? 2.0 * model.volume * model.dilatation[i] / m : 0.0;
-        model.bulk_coef[i] = m > 0.0 ? bulk * model.dilatation[i] / m : 0.0;
-        model.coef_pairs[2 * i] = model.bulk_coef[i];
-        model.coef_pairs[2 * i + 1] = model.shear_coef[i];
+        model.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * model.dilatation[i] / m : 0.0;
+        double* record = model.records.data() + 4 * static_cast<int64_t>(i);
+        record[0] = pos[2 * i];
+        record[1] = pos[2 * i + 1];
+        record[2] = model.bulk_coef[i];
+        record[3] = model.shear_coef[i];
       }
     });
     for_row_blocks(n, [&](int begin, int end) {
-      lps_forces_avx512(begin, end, bonds, model.coef_pairs.data(), v2, pos, force);
+      lps_forces_avx512(begin, end, bonds, model.records.data(), v2, force);
     });
     return;
   }
@@ -244,7 +250,7 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
                      pos, model.dilatation.data(), row_max);
     for (int i = begin; i < end; ++i) {
       const double m = model.weighted_volume[i];
-      model.bulk_coef[i] = m > 0.0 ? bulk * model.dilatation[i] / m : 0.0;
+      model.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * model.dilatation[i] / m : 0.0;
     }
   });
   // pass 2: pair forces, which need a_j of every neighbour, so only after pass 1 has finished
@@ -305,7 +311,11 @@ double state_based_damping_power(const BondStore& bonds, const StateBasedModel& 
 
 double state_based_critical_time_step(const BondStore& bonds, const StateBasedModel& model,
                                       const std::vector<double>& masses) {
-  const double stiffest = std::max(2.0 * model.kappa, 4.0 * model.mu);
+  // A_i / m_i per particle, A_i = max(2 kappa, 4 mu_i)
+  std::vector<double> ratio(bonds.particle_count(), 0.0);
+  for (int i = 0; i < bonds.particle_count(); ++i)
+    if (model.weighted_volume[i] > 0.0)
+      ratio[i] = std::max(2.0 * model.kappa, 4.0 * model.shear_modulus[i]) / model.weighted_volume[i];
   const double v2 = model.volume * model.volume;
   double dt = std::numeric_limits<double>::infinity();
   for (int i = 0; i < bonds.particle_count(); ++i) {
@@ -315,7 +325,7 @@ double state_based_critical_time_step(const BondStore& bonds, const StateBasedMo
       const double mj = model.weighted_volume[bonds.neighbor[b]];
       if (!(mi > 0.0) || !(mj > 0.0)) continue;
       // k / |xi| of the bounding pair bond
-      sum += 2.0 * double(bonds.stiffness[b]) * v2 * (stiffest / mi + stiffest / mj);
+      sum += 2.0 * double(bonds.stiffness[b]) * v2 * (ratio[i] + ratio[bonds.neighbor[b]]);
     }
     if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * masses[i] / sum));
   }

@@ -4,7 +4,8 @@
 // partial-volume factor), 0 once broken, so drawing, damage, stretch colouring and the fracture pass
 // work on it unchanged. Positions and velocities are interleaved [x0 y0 x1 y1 ...].
 //
-// With a = (2 kappa - 4 mu) theta / m and b = 8 mu / m per particle, the pair force along the bond is
+// With a = (2 kappa - 4 mu_i) theta / m and b = 8 mu_i / m per particle (mu_i the shear modulus
+// with the surface correction's factor, state_based_surface.h), the pair force along the bond is
 //   f_ij = V^2 w beta ((a_i + a_j) |xi| + (b_i + b_j) e),  e = |y| - |xi|,
 // the derivative of the energy; so a step is two passes over the bonds: dilatations, then forces.
 #pragma once
@@ -19,18 +20,20 @@ namespace periflex {
 struct StateBasedModel {
   double volume = 0.0;                   // V of every particle [m^3] (thickness included)
   double kappa = 0.0, mu = 0.0;          // 2D bulk and shear moduli [Pa]
+  std::vector<double> shear_modulus;     // mu_i: mu times the surface correction's factor (empty: mu)
   std::vector<double> weighted_volume;   // m_i = V sum_j w beta |xi|^2 over intact bonds [m^5]
-  std::vector<double> shear_coef;        // b_i = 8 mu / m_i (0 without intact bonds)
+  std::vector<double> shear_coef;        // b_i = 8 mu_i / m_i (0 without intact bonds)
   std::vector<double> bulk_coef;         // a_i of the last force evaluation (scratch)
   std::vector<double> dilatation;        // theta_i of the last dilatation pass (scratch)
-  std::vector<double> coef_pairs;        // [a_0 b_0 a_1 b_1 ...] (scratch): one cache line per neighbour
+  std::vector<double> records;           // [x_0 y_0 a_0 b_0 x_1 ...] (scratch): a neighbour in one 32-byte load
 };
 
 // Allows (default) or forbids the hand-written AVX-512 row loops; without them the compiled
 // loops run (AVX2 or baseline). The two agree to round-off; this is for tests and comparisons.
 void set_state_based_avx512(bool enabled);
 
-// Fills weighted_volume and shear_coef from the intact bonds; call again after bonds break.
+// Fills weighted_volume and shear_coef from the intact bonds (and shear_modulus with mu where it is
+// empty); call again after bonds break.
 void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model);
 
 // The same for the listed particles only (those whose bonds just broke).
@@ -62,7 +65,7 @@ double state_based_damping_power(const BondStore& bonds, const StateBasedModel& 
                                  const double* vel, double eta_over_e);
 
 // A stable step of explicit integration, min over particles: the energy is bounded by that of
-// pair bonds of stiffness k = 2 w beta |xi| V^2 (A / m_i + A / m_j), A = max(2 kappa, 4 mu) (the
+// pair bonds of stiffness k = 2 w beta |xi| V^2 (A_i / m_i + A_j / m_j), A_i = max(2 kappa, 4 mu_i) (the
 // bulk part by Cauchy-Schwarz, theta^2 <= (4 / m) sum w beta e^2 V), whose Silling & Askari bound
 // sqrt(2 m_i / sum_j k / |xi|) then holds for the LPS as well.
 double state_based_critical_time_step(const BondStore& bonds, const StateBasedModel& model,

@@ -19,9 +19,10 @@ namespace periflex {
 // stretch over the row's intact bonds (-1 without any) to most[i].
 void lps_extension_sums_avx512(int begin, int end, const BondStore& bonds, const double* pos, double* sum,
                                double* most);
-// force_i += v2 sum_j w ((a_i + a_j) |xi| + (b_i + b_j) (|y| - |xi|)) y / |y|, with ab = [a_0 b_0 a_1 b_1 ...].
-void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* ab, double v2, const double* pos,
-                       double* force);
+// force_i += v2 sum_j w ((a_i + a_j) |xi| + (b_i + b_j) (|y| - |xi|)) y / |y|, with the records
+// [x_0 y_0 a_0 b_0 x_1 ...] (positions and coefficients of each particle in 32 bytes: a neighbour is
+// one load, not four gathered elements).
+void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* records, double v2, double* force);
 #endif
 
 }  // namespace periflex

@@ -40,27 +40,51 @@ PERIFLEX_LPS_AVX512 inline ClassTables class_tables(const BondStore& bonds) {
   return {_mm512_load_pd(length), _mm512_load_pd(length + 8), _mm512_load_pd(inv), _mm512_load_pd(inv + 8)};
 }
 
-// One block of up to eight bonds [b, min(b + 8, last)): masked-off lanes point at the particle
-// itself with w = 0 and class 0, so they add nothing.
+// One block of up to eight bonds [b, min(b + 8, last)): masked-off lanes take the particle itself
+// (load_points), w = 0 and class 0, so they add nothing.
 struct Block {
   __mmask8 mask;
-  __m256i twice_j;  // 2 j, the x coordinate of the neighbour
-  __m512i cls;      // length class
-  __m512d w;        // bond weight, 0 once broken or masked
+  __m512i cls;  // length class
+  __m512d w;    // bond weight, 0 once broken or masked
 };
 
-PERIFLEX_LPS_AVX512 inline Block load_block(const BondStore& bonds, int64_t b, int64_t last, int i) {
+PERIFLEX_LPS_AVX512 inline Block load_block(const BondStore& bonds, int64_t b, int64_t last) {
   Block k;
   const int64_t left = last - b;
   k.mask = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
-  const __m256i j = _mm256_mask_loadu_epi32(_mm256_set1_epi32(i), k.mask, bonds.neighbor.data() + b);
-  k.twice_j = _mm256_slli_epi32(j, 1);
   k.cls = _mm512_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(k.mask), bonds.length_class.data() + b));
   k.w = _mm512_cvtps_pd(_mm256_maskz_loadu_ps(k.mask, bonds.stiffness.data() + b));
   return k;
 }
 
-template <bool kTrack>
+// Neighbour j of lane k of the block starting at bond b (the particle itself past the row's end).
+template <bool kOffsets>
+inline int lane_neighbor(const BondStore& bonds, int64_t b, int64_t left, int k, int i) {
+  if (k >= left) return i;
+  return kOffsets ? i + bonds.neighbor_offset[b + k] : bonds.neighbor[b + k];
+}
+
+// x and y of eight neighbours (lane k: neighbour k) from one 16-byte load each and a deinterleave
+// in registers, instead of two gathers of eight.
+PERIFLEX_LPS_AVX512 inline __m512d four_points(const double* pos, const int* j) {
+  const __m512d z = _mm512_castpd128_pd512(_mm_loadu_pd(pos + 2 * static_cast<int64_t>(j[0])));
+  const __m512d z1 = _mm512_insertf64x2(z, _mm_loadu_pd(pos + 2 * static_cast<int64_t>(j[1])), 1);
+  const __m512d z2 = _mm512_insertf64x2(z1, _mm_loadu_pd(pos + 2 * static_cast<int64_t>(j[2])), 2);
+  return _mm512_insertf64x2(z2, _mm_loadu_pd(pos + 2 * static_cast<int64_t>(j[3])), 3);
+}
+
+template <bool kOffsets>
+PERIFLEX_LPS_AVX512 inline void load_points(const BondStore& bonds, const double* pos, int64_t b, int64_t left, int i,
+                                            __m512d& x, __m512d& y) {
+  int j[8];
+  for (int k = 0; k < 8; ++k) j[k] = lane_neighbor<kOffsets>(bonds, b, left, k, i);
+  // [x0 y0 x1 y1 x2 y2 x3 y3] and [x4 y4 ... y7] -> [x0 ... x7], [y0 ... y7]
+  const __m512d lo = four_points(pos, j), hi = four_points(pos, j + 4);
+  x = _mm512_permutex2var_pd(lo, _mm512_setr_epi64(0, 2, 4, 6, 8, 10, 12, 14), hi);
+  y = _mm512_permutex2var_pd(lo, _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15), hi);
+}
+
+template <bool kTrack, bool kOffsets>
 PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bonds, const double* __restrict pos,
                                         double* __restrict sum, double* __restrict most) {
   const ClassTables t = class_tables(bonds);
@@ -70,9 +94,10 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
     __m512d acc = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     const int64_t last = bonds.row[i + 1];
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
-      const Block k = load_block(bonds, b, last, i);
-      const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos, 8), xi);
-      const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos + 1, 8), yi);
+      const Block k = load_block(bonds, b, last);
+      __m512d xj, yj;
+      load_points<kOffsets>(bonds, pos, b, last - b, i, xj, yj);
+      const __m512d dx = _mm512_sub_pd(xj, xi), dy = _mm512_sub_pd(yj, yi);
       const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
       const __m512d len = _mm512_mul_pd(r2, reciprocal_length(r2));
       const __m512d x0 = _mm512_permutex2var_pd(t.length_lo, k.cls, t.length_hi);
@@ -93,32 +118,66 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
 
 PERIFLEX_LPS_AVX512 void lps_extension_sums_avx512(int begin, int end, const BondStore& bonds, const double* pos,
                                                    double* sum, double* most) {
-  if (most)
-    extension_sums<true>(begin, end, bonds, pos, sum, most);
+  const bool offsets = !bonds.neighbor_offset.empty();
+  if (most && offsets)
+    extension_sums<true, true>(begin, end, bonds, pos, sum, most);
+  else if (most)
+    extension_sums<true, false>(begin, end, bonds, pos, sum, most);
+  else if (offsets)
+    extension_sums<false, true>(begin, end, bonds, pos, sum, most);
   else
-    extension_sums<false>(begin, end, bonds, pos, sum, most);
+    extension_sums<false, false>(begin, end, bonds, pos, sum, most);
 }
 
-PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* __restrict ab,
-                                           double v2, const double* __restrict pos, double* __restrict force) {
+namespace {
+
+// The records [x y a b] of eight neighbours as four vectors X, Y, A, B (lane k: neighbour k): one
+// 32-byte load per neighbour, then a transpose in registers, instead of four gathers of eight.
+struct Neighbors {
+  __m512d x, y, a, b;
+};
+
+PERIFLEX_LPS_AVX512 inline __m512d two_records(const double* rec, int j0, int j1) {
+  return _mm512_insertf64x4(_mm512_castpd256_pd512(_mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j0))),
+                            _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j1)), 1);
+}
+
+template <bool kOffsets>
+PERIFLEX_LPS_AVX512 inline Neighbors load_neighbors(const BondStore& bonds, const double* rec, int64_t b,
+                                                    int64_t left, int i) {
+  int j[8];
+  for (int k = 0; k < 8; ++k) j[k] = lane_neighbor<kOffsets>(bonds, b, left, k, i);
+  // z01 = [x0 y0 a0 b0 x1 y1 a1 b1], z23, z45, z67 likewise
+  const __m512d z01 = two_records(rec, j[0], j[1]), z23 = two_records(rec, j[2], j[3]);
+  const __m512d z45 = two_records(rec, j[4], j[5]), z67 = two_records(rec, j[6], j[7]);
+  // even and odd entries of each 128-bit lane: [x0 x2 a0 a2 x1 x3 a1 a3], [y0 y2 b0 b2 y1 y3 b1 b3]
+  const __m512d lo0 = _mm512_unpacklo_pd(z01, z23), hi0 = _mm512_unpackhi_pd(z01, z23);
+  const __m512d lo1 = _mm512_unpacklo_pd(z45, z67), hi1 = _mm512_unpackhi_pd(z45, z67);
+  const __m512i first = _mm512_setr_epi64(0, 4, 1, 5, 8, 12, 9, 13), second = _mm512_setr_epi64(2, 6, 3, 7, 10, 14, 11, 15);
+  return {_mm512_permutex2var_pd(lo0, first, lo1), _mm512_permutex2var_pd(hi0, first, hi1),
+          _mm512_permutex2var_pd(lo0, second, lo1), _mm512_permutex2var_pd(hi0, second, hi1)};
+}
+
+template <bool kOffsets>
+PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, const double* __restrict rec, double v2,
+                                double* __restrict force) {
   const ClassTables t = class_tables(bonds);
   const __m512d one = _mm512_set1_pd(1.0);
   for (int i = begin; i < end; ++i) {
-    const __m512d xi = _mm512_set1_pd(pos[2 * i]), yi = _mm512_set1_pd(pos[2 * i + 1]);
-    const __m512d ai = _mm512_set1_pd(ab[2 * i]), bi = _mm512_set1_pd(ab[2 * i + 1]);
+    const double* own = rec + 4 * static_cast<int64_t>(i);
+    const __m512d xi = _mm512_set1_pd(own[0]), yi = _mm512_set1_pd(own[1]);
+    const __m512d ai = _mm512_set1_pd(own[2]), bi = _mm512_set1_pd(own[3]);
     __m512d fx = _mm512_setzero_pd(), fy = _mm512_setzero_pd();
     const int64_t last = bonds.row[i + 1];
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
-      const Block k = load_block(bonds, b, last, i);
-      const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos, 8), xi);
-      const __m512d dy = _mm512_sub_pd(_mm512_i32gather_pd(k.twice_j, pos + 1, 8), yi);
+      const Block k = load_block(bonds, b, last);
+      const Neighbors nb = load_neighbors<kOffsets>(bonds, rec, b, last - b, i);
+      const __m512d dx = _mm512_sub_pd(nb.x, xi), dy = _mm512_sub_pd(nb.y, yi);
       const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
       const __m512d inv_len = reciprocal_length(r2);
       const __m512d len = _mm512_mul_pd(r2, inv_len);
       const __m512d x0 = _mm512_permutex2var_pd(t.length_lo, k.cls, t.length_hi);
-      // a_j and b_j side by side, as x_j and y_j are: the same index, one cache line
-      const __m512d aj = _mm512_add_pd(ai, _mm512_i32gather_pd(k.twice_j, ab, 8));
-      const __m512d bj = _mm512_add_pd(bi, _mm512_i32gather_pd(k.twice_j, ab + 1, 8));
+      const __m512d aj = _mm512_add_pd(ai, nb.a), bj = _mm512_add_pd(bi, nb.b);
       // w ((a_i + a_j) |xi| + (b_i + b_j) (|y| - |xi|)) / |y|
       const __m512d pair = _mm512_fmadd_pd(aj, x0, _mm512_mul_pd(bj, _mm512_sub_pd(len, x0)));
       const __m512d f = _mm512_mul_pd(_mm512_mul_pd(k.w, pair), inv_len);
@@ -128,6 +187,16 @@ PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& 
     force[2 * i] += v2 * _mm512_reduce_add_pd(fx);
     force[2 * i + 1] += v2 * _mm512_reduce_add_pd(fy);
   }
+}
+
+}  // namespace
+
+PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* records,
+                                           double v2, double* force) {
+  if (!bonds.neighbor_offset.empty())
+    forces<true>(begin, end, bonds, records, v2, force);
+  else
+    forces<false>(begin, end, bonds, records, v2, force);
 }
 
 }  // namespace periflex

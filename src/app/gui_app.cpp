@@ -344,6 +344,12 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     }
     if (k.key == GLFW_KEY_S && !ctrl) pending_screenshot_ = default_screenshot_name();
     if (k.key == GLFW_KEY_F1) show_help_ = !show_help_;
+    if (k.key == GLFW_KEY_P && !ctrl) show_plot_ = !show_plot_;
+    if (k.key == GLFW_KEY_K && !ctrl) {
+      knife_ = !knife_;
+      cutting_ = false;
+      log_.add(knife_ ? "knife on (key)" : "knife off (key)");
+    }
     // D: the undeformed shape, and back to the magnification before
     if (k.key == GLFW_KEY_D && !ctrl) {
       if (render_.deform != 0.0f) {
@@ -382,6 +388,8 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       send(c);
     }
   }
+  // a knife drag lasts until the button is released, wherever the mouse goes
+  if (cutting_) knife_input(world);
   if (io.WantCaptureMouse) return;
 
   if (io.MouseWheel != 0.0f) {
@@ -393,7 +401,10 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     follow_ = -1;
     auto_frame_ = false;
   }
-  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && worker_.has_snapshot()) {
+  if (knife_ && !cutting_ && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    cutting_ = true;
+    knife_from_ = knife_to_ = world;
+  } else if (!knife_ && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && worker_.has_snapshot()) {
     const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
     if (std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance)) {
       grabbing_ = true;
@@ -484,6 +495,14 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   dump_.state("deform", renderer_->last_deform());
   dump_.state("deform_auto", render_.deform < 0.0f ? "1" : "0");
   dump_.state("help", show_help_ ? "1" : "0");
+  dump_.state("knife", knife_ ? "1" : "0");
+  dump_.state("broken_bonds", static_cast<double>(worker_.snapshot().broken_bonds));
+  // each probe where it is now, "X Y" [m]
+  for (const Snapshot::Probe& p : worker_.snapshot().probes) {
+    char at[64];
+    std::snprintf(at, sizeof at, "%.9g %.9g", p.position.x(), p.position.y());
+    dump_.state("probe_" + p.name, at);
+  }
   // the description's first line, which a test compares with the scene file's first comment
   dump_.state("description", description_.substr(0, description_.find('\n')));
   dump_.state("scene_generation", static_cast<double>(status_.scene_generation));
@@ -597,9 +616,11 @@ int GuiApp::run() {
         render_.colormap = RenderSettings{}.colormap;
       }
       draw_mouse_spring(snap, fb_width, fb_height);
+      draw_knife(fb_width, fb_height);
       draw_panels(fb_width, fb_height);
       if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
       draw_performance(fb_width);
+      plot_window(fb_width, fb_height);
       inspect_particle(fb_width, fb_height);
       draw_load_error(fb_width);
       help_window(fb_width, fb_height);
@@ -609,6 +630,7 @@ int GuiApp::run() {
       dump_.end_frame();
     }
     if (!screenshot.empty()) capture_screenshot(screenshot, fb_width, fb_height);
+    if (!pending_plot_png_.empty()) capture_plot(fb_width, fb_height);
     glfwSwapBuffers(window_);
     run_pending_actions(fb_width, fb_height);
 

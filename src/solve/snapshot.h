@@ -90,6 +90,11 @@ struct Snapshot {
   double violation_velocity = 0.0;
   long broken_bonds = 0;
   double max_damage = 0.0;
+
+  // One row of series.csv at this instant (output/series_row.h) and its column names, for the
+  // window's plots: filled by the window's model only, empty elsewhere.
+  std::shared_ptr<const std::vector<std::string>> series_columns;
+  std::vector<double> series;
 };
 
 }  // namespace periflex

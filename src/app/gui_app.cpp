@@ -122,6 +122,7 @@ void GuiApp::take_snapshot() {
     if (status_.scene_path != shown_scene_path_) {
       fit_pending_ = true;
       follow_ = -1;
+      inspected_body_ = -1;
     }
     shown_scene_path_ = status_.scene_path;
     description_ = scene_description(status_.scene_path, status_.scene_description);
@@ -406,7 +407,11 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     knife_from_ = knife_to_ = world;
   } else if (!knife_ && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && worker_.has_snapshot()) {
     const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
-    if (std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance)) {
+    std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance);
+    // a rigid body clicked is inspected (and held, as any body clicked); the empty picture
+    // clicked closes the inspector
+    inspected_body_ = spring && spring->body >= 0 ? spring->body + 1 : spring ? inspected_body_ : -1;
+    if (spring) {
       grabbing_ = true;
       grab_by_mouse_ = true;
       grab_spring_ = *spring;
@@ -622,6 +627,7 @@ int GuiApp::run() {
       draw_performance(fb_width);
       plot_window(fb_width, fb_height);
       inspect_particle(fb_width, fb_height);
+      inspect_body(fb_width);
       draw_load_error(fb_width);
       help_window(fb_width, fb_height);
       dump_state(fb_width, fb_height);

@@ -74,6 +74,8 @@ class GuiApp {
   void draw_load_error(int fb_width);
   // the particle under the pointer (gui_inspect.cpp)
   void inspect_particle(int fb_width, int fb_height);
+  // the rigid body last clicked (gui_body_inspector.cpp)
+  void inspect_body(int fb_width);
   void panel_plots();
   // the plot window (gui_plot.cpp) and its PNG, read from the frame just drawn
   void plot_window(int fb_width, int fb_height);
@@ -158,6 +160,7 @@ class GuiApp {
   bool knife_ = false;              // the knife mode (K): a left-drag cuts instead of grabbing
   bool cutting_ = false;            // a knife drag in progress, from knife_from_ to knife_to_
   Vec2 knife_from_ = Vec2::Zero(), knife_to_ = Vec2::Zero();
+  int inspected_body_ = -1;         // geometry index of the rigid body clicked, -1: none
   bool grabbing_ = false;
   bool grab_by_mouse_ = false;      // false: a script holds the grab
   MouseSpring grab_spring_;

@@ -23,6 +23,8 @@ class SimulationModel final : public SteppedModel {
   double end_time() const override { return sim_.end_time(); }
   const ModelInfo& info() const override { return sim_.info(); }
   void fill_snapshot(Snapshot& out) const override {
+    // the joints' reactions for the rigid-body inspector
+    out.with_reactions = true;
     sim_.fill_snapshot(out);
     // the row series.csv would hold now, for the plots
     const bool damage = sim_.info().particles > 0, contact = !sim_.scene().contacts.empty();

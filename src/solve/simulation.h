@@ -102,6 +102,8 @@ class Simulation {
   // trajectory at every step needs (sample() computes energies and violations too).
   Vec2 probe_position(int index) const;
   void fill_snapshot(Snapshot& out) const;
+  // The joints' reactions of fill_snapshot, when out.with_reactions is set (Snapshot::Reaction).
+  void fill_reactions(Snapshot& out) const;
 
   LiveSettings settings() const;
   void apply(const LiveSettings& settings);

@@ -9,7 +9,7 @@
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
 # CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect | plot |
-#       knife
+#       knife | body
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -538,6 +538,37 @@ case "$case_name" in
     # Backspace (reset) undoes the cut
     tap BackSpace
     wait_until 10 "the reset" '(( $(state step) == 0 )) && [[ "$(state broken_bonds)" == 0 ]]'
+    quit
+    ;;
+  body)
+    # the pendulum paused mid-swing, its bob clicked: the inspector shows its q and qd, and the
+    # rod's reaction, the tension m g cos(theta) + m v^2 / L along the rod towards the pivot
+    start pendulum.toml --set solver.end_time=1000
+    wait_until 60 "the swing under way (t > 0.7 s)" 'holds "$(state time) > 0.7"'
+    xdotool mousemove --window "$window" 1200 100
+    tap space
+    wait_until 10 "Space to pause" '[[ "$(state running)" == 0 ]]'
+    read -r bx by < <(state probe_bob)
+    read -r x y < <(to_window "$bx" "$by")
+    xdotool mousemove --window "$window" "$x" "$y" click 1 || fail "xdotool click on the bob"
+    wait_until 10 "the inspector of the bob" '[[ -n "$(centre body_inspector)" && -n "$(state reaction_rod)" ]]'
+    sleep 0.5
+    read -r name qx qy qa vx vy w < <(state body_inspected)
+    read -r fx fy m < <(state reaction_rod)
+    [[ "$name" == bob ]] || fail "inspecting $name, not the bob"
+    holds "($qx - $bx)^2 + ($qy - $by)^2 < 1e-12" || fail "q ($qx, $qy) is not where the bob is ($bx, $by)"
+    # m = 1 kg, L = 1 m, g = 9.81 m/s^2: T = g (-y) + v^2, the force -T (x, y) on the bob
+    echo "bob at ($qx, $qy), v ($vx, $vy); rod reaction ($fx, $fy) N, moment $m N m"
+    awk -v x="$qx" -v y="$qy" -v vx="$vx" -v vy="$vy" -v fx="$fx" -v fy="$fy" -v m="$m" 'BEGIN {
+      t = 9.81 * (-y) + vx * vx + vy * vy; ex = -t * x; ey = -t * y
+      err = sqrt((fx - ex)^2 + (fy - ey)^2) / t
+      printf "tension %.6g N, reaction off by %.2g of it\n", t, err
+      exit !(t > 1 && err < 1e-3 && (m < 1e-6 * t && m > -1e-6 * t)) }' ||
+      fail "the rod reaction is not the pendulum's tension"
+    # the empty picture clicked (below the pivot, right of the swing): the inspector closes
+    read -r x y < <(to_window 0.9 -1.2)
+    xdotool mousemove --window "$window" "$x" "$y" click 1 || fail "xdotool click"
+    wait_until 10 "the inspector closed" '[[ -z "$(centre body_inspector)" ]]'
     quit
     ;;
   *)

@@ -265,6 +265,32 @@ void GuiApp::execute(const ScriptAction& a) {
   } else if (verb == "release") {
     grabbing_ = false;
     send(command(Kind::kMouseSpring));
+  } else if (verb == "plot") {
+    // the plot window with column Y against X (time by default); a column the scene lacks
+    // falls back as in the window
+    show_plot_ = true;
+    plot_y_ = a.args[0];
+    plot_x_ = a.args.size() > 1 ? a.args[1] : "t";
+    plot_zoomed_ = false;
+  } else if (verb == "cut") {
+    // the knife from (X0, Y0) to (X1, Y1), as a mouse drag cuts
+    knife_from_ = Vec2(std::atof(a.args[0].c_str()), std::atof(a.args[1].c_str()));
+    knife_to_ = Vec2(std::atof(a.args[2].c_str()), std::atof(a.args[3].c_str()));
+    SimCommand c = command(Kind::kCut);
+    c.from = knife_from_;
+    c.to = knife_to_;
+    c.drawn_x = renderer_->drawn_x();
+    c.drawn_y = renderer_->drawn_y();
+    send(std::move(c));
+  } else if (verb == "inspect") {
+    inspected_body_ = -1;
+    const Snapshot& s = worker_.snapshot();
+    if (a.args[0] != "none" && s.geometry) {
+      for (size_t b = 1; b < s.geometry->bodies.size(); ++b) {
+        if (s.geometry->bodies[b].name == a.args[0]) inspected_body_ = static_cast<int>(b);
+      }
+      if (inspected_body_ < 0) script_failure("no rigid body named '" + a.args[0] + "' to inspect");
+    }
   } else if (verb == "wait") {
     wait_time_ = std::atof(a.args[0].c_str());
     block_started_ = wall_seconds();

@@ -49,8 +49,8 @@ bool column_combo(const char* label, const char* id, std::string& chosen, const 
 void GuiApp::plot_window(int fb_width, int fb_height) {
   if (!show_plot_) return;
   const float scale = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
-  // below the picture's middle, beside the panels, until the user moves it
-  ImGui::SetNextWindowPos(ImVec2(kPanelWidth / scale + 12.0f, std::max(40.0f, fb_height / scale - 372.0f)),
+  // at the bottom of the picture beside the panels, clear of the colour legend, until moved
+  ImGui::SetNextWindowPos(ImVec2(kPanelWidth / scale + 12.0f, std::max(40.0f, fb_height / scale - 440.0f)),
                           ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(std::min(620.0f, fb_width / scale - kPanelWidth / scale - 24.0f), 360.0f),
                            ImGuiCond_FirstUseEver);
@@ -60,8 +60,8 @@ void GuiApp::plot_window(int fb_width, int fb_height) {
   }
   const std::vector<std::string>& columns = history_.columns();
   // a column that this scene lacks falls back to time and kinetic energy
-  if (history_.index_of(plot_x_) < 0) plot_x_ = "t";
-  if (history_.index_of(plot_y_) < 0) plot_y_ = "kinetic";
+  if (!columns.empty() && history_.index_of(plot_x_) < 0) plot_x_ = "t";
+  if (!columns.empty() && history_.index_of(plot_y_) < 0) plot_y_ = "kinetic";
   if (column_combo("y", "plot_y", plot_y_, columns, dump_)) plot_zoomed_ = false;
   ImGui::SameLine();
   if (column_combo("against", "plot_x", plot_x_, columns, dump_)) plot_zoomed_ = false;

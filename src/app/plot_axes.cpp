@@ -30,13 +30,19 @@ std::vector<double> nice_ticks(double lo, double hi, int most) {
 }
 
 std::string tick_label(double value, double step) {
-  if (std::fabs(value) < 1e-9 * std::fabs(step)) value = 0.0;
-  // as many digits as the step needs
-  const int digits = std::clamp(static_cast<int>(std::ceil(std::log10(std::max(std::fabs(value), std::fabs(step)) /
-                                                                     std::fabs(step)))) + 1,
-                                1, 12);
+  step = std::fabs(step);
+  if (std::fabs(value) < 1e-9 * step) value = 0.0;
+  const double magnitude = std::max(std::fabs(value), step);
+  const int step_decade = static_cast<int>(std::floor(std::log10(step) + 1e-9));
   char text[48];
-  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  if (magnitude >= 1e-3 && magnitude < 1e5) {
+    // plain decimals, as many as the step has
+    std::snprintf(text, sizeof text, "%.*f", std::max(0, -step_decade), value);
+  } else {
+    // very small or large: the significant digits the step needs
+    const int digits = std::clamp(static_cast<int>(std::floor(std::log10(magnitude) + 1e-9)) - step_decade + 1, 1, 12);
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+  }
   return text;
 }
 

@@ -11,7 +11,8 @@ namespace periflex {
 // is not empty). An empty or reversed range gives the one value lo.
 std::vector<double> nice_ticks(double lo, double hi, int most);
 
-// A tick's label: the value in the step's precision ("0.25", "1e-06", "-3"), no "-0".
+// A tick's label: the value with the step's decimals ("0.04", "400", "-3"), in exponent form
+// only below 1e-3 or from 1e5 ("2e-06"), never "-0".
 std::string tick_label(double value, double step);
 
 // The range of `y` over the points whose x lies in [x_lo, x_hi], widened by 5% each side (a flat

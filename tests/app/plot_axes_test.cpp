@@ -33,10 +33,13 @@ TEST(PlotAxes, TicksAreRoundAndInsideTheRange) {
 
 TEST(PlotAxes, LabelsHaveTheStepsDigitsOnly) {
   EXPECT_EQ(tick_label(0.6000000000000001, 0.2), "0.6");
-  EXPECT_EQ(tick_label(-1e-18, 0.5), "0");
+  EXPECT_EQ(tick_label(-1e-18, 0.5), "0.0");  // not "-0.0"
   EXPECT_EQ(tick_label(1.25, 0.05), "1.25");
   EXPECT_EQ(tick_label(2e-6, 1e-6), "2e-06");
-  EXPECT_EQ(tick_label(1200, 100), "1.2e+03");
+  EXPECT_EQ(tick_label(1200, 100), "1200");
+  EXPECT_EQ(tick_label(400, 200), "400");
+  EXPECT_EQ(tick_label(0.04, 0.02), "0.04");
+  EXPECT_EQ(tick_label(3e6, 1e6), "3e+06");
 }
 
 TEST(PlotAxes, VisibleRangeFollowsTheZoom) {

@@ -161,6 +161,7 @@ class GuiApp {
   bool cutting_ = false;            // a knife drag in progress, from knife_from_ to knife_to_
   Vec2 knife_from_ = Vec2::Zero(), knife_to_ = Vec2::Zero();
   int inspected_body_ = -1;         // geometry index of the rigid body clicked, -1: none
+  bool reactions_asked_ = false;    // the simulation thread was asked for the reactions
   bool grabbing_ = false;
   bool grab_by_mouse_ = false;      // false: a script holds the grab
   MouseSpring grab_spring_;

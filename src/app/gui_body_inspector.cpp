@@ -12,6 +12,14 @@ namespace periflex {
 
 void GuiApp::inspect_body(int fb_width) {
   const Snapshot& snap = worker_.snapshot();
+  // the simulation thread adds the reactions to its snapshots only while they are shown
+  const bool wanted = inspected_body_ > 0;
+  if (wanted != reactions_asked_) {
+    SimCommand c = SimCommand::make(SimCommand::Kind::kReactions);
+    c.count = wanted ? 1 : 0;
+    send(std::move(c));
+    reactions_asked_ = wanted;
+  }
   if (inspected_body_ <= 0 || !snap.geometry || inspected_body_ >= static_cast<int>(snap.bodies.size()) ||
       inspected_body_ >= static_cast<int>(snap.geometry->bodies.size())) {
     return;

@@ -26,6 +26,7 @@ struct SimCommand {
     kMouseSpring,    // set (or, when `spring` is empty, release) the mouse spring
     kCut,            // a knife: cut the bonds the segment `from` .. `to` crosses (drawn_x, drawn_y:
                      // the particles where the window draws them)
+    kReactions,      // snapshots carry the joints' reactions (count 1) or not (count 0)
     kRecord,         // publish recording snapshots every `number` simulated seconds; 0 stops
     kQuit,           // end the simulation thread
   };

@@ -294,6 +294,9 @@ void SimWorker::apply(SimCommand& c) {
                                      : "grab particle " + std::to_string(c.spring->particle) + by);
       }
       break;
+    case Kind::kReactions:
+      model_->set_reactions(c.count != 0);
+      break;
     case Kind::kCut: {
       // paused or running, between two steps
       const long cut = model_->cut_bonds(c.from, c.to, c.drawn_x, c.drawn_y);

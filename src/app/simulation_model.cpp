@@ -23,8 +23,8 @@ class SimulationModel final : public SteppedModel {
   double end_time() const override { return sim_.end_time(); }
   const ModelInfo& info() const override { return sim_.info(); }
   void fill_snapshot(Snapshot& out) const override {
-    // the joints' reactions for the rigid-body inspector
-    out.with_reactions = true;
+    // the joints' reactions while the rigid-body inspector shows them
+    out.with_reactions = reactions_;
     sim_.fill_snapshot(out);
     // the row series.csv would hold now, for the plots
     const bool damage = sim_.info().particles > 0, contact = !sim_.scene().contacts.empty();
@@ -39,6 +39,7 @@ class SimulationModel final : public SteppedModel {
   double set_mouse_spring(const std::optional<MouseSpring>& spring) override {
     return sim_.set_mouse_spring(spring);
   }
+  void set_reactions(bool wanted) override { reactions_ = wanted; }
   long cut_bonds(const Vec2& from, const Vec2& to, const std::vector<float>& drawn_x,
                  const std::vector<float>& drawn_y) override {
     return sim_.cut_bonds(from, to, drawn_x, drawn_y);
@@ -47,6 +48,7 @@ class SimulationModel final : public SteppedModel {
  private:
   Simulation sim_;
   mutable std::shared_ptr<const std::vector<std::string>> columns_;
+  bool reactions_ = false;
 };
 
 }  // namespace

@@ -122,6 +122,7 @@ void GuiApp::take_snapshot() {
     if (status_.scene_path != shown_scene_path_) {
       fit_pending_ = true;
       follow_ = -1;
+      inspected_body_ = -1;
     }
     shown_scene_path_ = status_.scene_path;
     description_ = scene_description(status_.scene_path, status_.scene_description);
@@ -264,6 +265,32 @@ void GuiApp::execute(const ScriptAction& a) {
   } else if (verb == "release") {
     grabbing_ = false;
     send(command(Kind::kMouseSpring));
+  } else if (verb == "plot") {
+    // the plot window with column Y against X (time by default); a column the scene lacks
+    // falls back as in the window
+    show_plot_ = true;
+    plot_y_ = a.args[0];
+    plot_x_ = a.args.size() > 1 ? a.args[1] : "t";
+    plot_zoomed_ = false;
+  } else if (verb == "cut") {
+    // the knife from (X0, Y0) to (X1, Y1), as a mouse drag cuts
+    knife_from_ = Vec2(std::atof(a.args[0].c_str()), std::atof(a.args[1].c_str()));
+    knife_to_ = Vec2(std::atof(a.args[2].c_str()), std::atof(a.args[3].c_str()));
+    SimCommand c = command(Kind::kCut);
+    c.from = knife_from_;
+    c.to = knife_to_;
+    c.drawn_x = renderer_->drawn_x();
+    c.drawn_y = renderer_->drawn_y();
+    send(std::move(c));
+  } else if (verb == "inspect") {
+    inspected_body_ = -1;
+    const Snapshot& s = worker_.snapshot();
+    if (a.args[0] != "none" && s.geometry) {
+      for (size_t b = 1; b < s.geometry->bodies.size(); ++b) {
+        if (s.geometry->bodies[b].name == a.args[0]) inspected_body_ = static_cast<int>(b);
+      }
+      if (inspected_body_ < 0) script_failure("no rigid body named '" + a.args[0] + "' to inspect");
+    }
   } else if (verb == "wait") {
     wait_time_ = std::atof(a.args[0].c_str());
     block_started_ = wall_seconds();
@@ -344,6 +371,12 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     }
     if (k.key == GLFW_KEY_S && !ctrl) pending_screenshot_ = default_screenshot_name();
     if (k.key == GLFW_KEY_F1) show_help_ = !show_help_;
+    if (k.key == GLFW_KEY_P && !ctrl) show_plot_ = !show_plot_;
+    if (k.key == GLFW_KEY_K && !ctrl) {
+      knife_ = !knife_;
+      cutting_ = false;
+      log_.add(knife_ ? "knife on (key)" : "knife off (key)");
+    }
     // D: the undeformed shape, and back to the magnification before
     if (k.key == GLFW_KEY_D && !ctrl) {
       if (render_.deform != 0.0f) {
@@ -382,6 +415,8 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       send(c);
     }
   }
+  // a knife drag lasts until the button is released, wherever the mouse goes
+  if (cutting_) knife_input(world);
   if (io.WantCaptureMouse) return;
 
   if (io.MouseWheel != 0.0f) {
@@ -393,9 +428,16 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     follow_ = -1;
     auto_frame_ = false;
   }
-  if (ImGui::IsMouseClicked(ImGuiMouseButton_Left) && worker_.has_snapshot()) {
+  if (knife_ && !cutting_ && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+    cutting_ = true;
+    knife_from_ = knife_to_ = world;
+  } else if (!knife_ && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && worker_.has_snapshot()) {
     const double tolerance = kPickPixels * camera_.view_height / std::max(1, fb_height);
-    if (std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance)) {
+    std::optional<MouseSpring> spring = pick(worker_.snapshot(), world, tolerance);
+    // a rigid body clicked is inspected (and held, as any body clicked); the empty picture
+    // clicked closes the inspector
+    inspected_body_ = spring && spring->body >= 0 ? spring->body + 1 : spring ? inspected_body_ : -1;
+    if (spring) {
       grabbing_ = true;
       grab_by_mouse_ = true;
       grab_spring_ = *spring;
@@ -484,6 +526,14 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   dump_.state("deform", renderer_->last_deform());
   dump_.state("deform_auto", render_.deform < 0.0f ? "1" : "0");
   dump_.state("help", show_help_ ? "1" : "0");
+  dump_.state("knife", knife_ ? "1" : "0");
+  dump_.state("broken_bonds", static_cast<double>(worker_.snapshot().broken_bonds));
+  // each probe where it is now, "X Y" [m]
+  for (const Snapshot::Probe& p : worker_.snapshot().probes) {
+    char at[64];
+    std::snprintf(at, sizeof at, "%.9g %.9g", p.position.x(), p.position.y());
+    dump_.state("probe_" + p.name, at);
+  }
   // the description's first line, which a test compares with the scene file's first comment
   dump_.state("description", description_.substr(0, description_.find('\n')));
   dump_.state("scene_generation", static_cast<double>(status_.scene_generation));
@@ -597,10 +647,13 @@ int GuiApp::run() {
         render_.colormap = RenderSettings{}.colormap;
       }
       draw_mouse_spring(snap, fb_width, fb_height);
+      draw_knife(fb_width, fb_height);
       draw_panels(fb_width, fb_height);
       if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
       draw_performance(fb_width);
+      plot_window(fb_width, fb_height);
       inspect_particle(fb_width, fb_height);
+      inspect_body(fb_width);
       draw_load_error(fb_width);
       help_window(fb_width, fb_height);
       dump_state(fb_width, fb_height);
@@ -609,6 +662,7 @@ int GuiApp::run() {
       dump_.end_frame();
     }
     if (!screenshot.empty()) capture_screenshot(screenshot, fb_width, fb_height);
+    if (!pending_plot_png_.empty()) capture_plot(fb_width, fb_height);
     glfwSwapBuffers(window_);
     run_pending_actions(fb_width, fb_height);
 

@@ -2,6 +2,7 @@
 // Internal to src/app/; run_gui (gui.h) is the public entry point.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -54,6 +55,9 @@ class GuiApp {
   void script_failure(const std::string& what);
   void dump_state(int fb_width, int fb_height);
   void draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height);
+  // the knife (gui_knife.cpp): a left-drag over the picture draws a segment; its release cuts
+  void knife_input(const Vec2& world);
+  void draw_knife(int fb_width, int fb_height);
 
   // panels (gui_panels.cpp)
   void panel_simulation();
@@ -70,7 +74,12 @@ class GuiApp {
   void draw_load_error(int fb_width);
   // the particle under the pointer (gui_inspect.cpp)
   void inspect_particle(int fb_width, int fb_height);
+  // the rigid body last clicked (gui_body_inspector.cpp)
+  void inspect_body(int fb_width);
   void panel_plots();
+  // the plot window (gui_plot.cpp) and its PNG, read from the frame just drawn
+  void plot_window(int fb_width, int fb_height);
+  void capture_plot(int fb_width, int fb_height);
   void panel_export();
   void panel_log();
   void numerical_error_modal();
@@ -116,6 +125,14 @@ class GuiApp {
   FileWatch scene_watch_;           // that file, for the hot reload
   double frame_seconds_ = 0.0, last_frame_wall_ = 0.0;
   PlotHistory history_;
+  bool show_plot_ = false;          // the plot window (P)
+  std::string plot_x_ = "t", plot_y_ = "kinetic";  // series.csv columns plotted
+  bool plot_zoomed_ = false;        // false: x spans the whole history
+  double plot_x_lo_ = 0.0, plot_x_hi_ = 1.0;
+  char plot_path_[512] = "plot";    // exports go to <this>.csv and <this>.png
+  std::string plot_message_;
+  std::string pending_plot_png_;    // asked this frame, read after drawing
+  std::array<float, 4> plot_png_rect_{};  // the canvas in framebuffer pixels (x0, y0, x1, y1)
   long seen_generation_ = -1, seen_scene_generation_ = -1;
   LiveSettings edit_;               // the live-parameter panel's copy
   long edit_generation_ = -1;
@@ -140,6 +157,11 @@ class GuiApp {
   int exit_code_ = 0;
 
   // mouse
+  bool knife_ = false;              // the knife mode (K): a left-drag cuts instead of grabbing
+  bool cutting_ = false;            // a knife drag in progress, from knife_from_ to knife_to_
+  Vec2 knife_from_ = Vec2::Zero(), knife_to_ = Vec2::Zero();
+  int inspected_body_ = -1;         // geometry index of the rigid body clicked, -1: none
+  bool reactions_asked_ = false;    // the simulation thread was asked for the reactions
   bool grabbing_ = false;
   bool grab_by_mouse_ = false;      // false: a script holds the grab
   MouseSpring grab_spring_;

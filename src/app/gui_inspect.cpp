@@ -28,8 +28,8 @@ double at_or_zero(const std::vector<T>& v, int i) {
 
 void GuiApp::inspect_particle(int fb_width, int fb_height) {
   const ImGuiIO& io = ImGui::GetIO();
-  // only over the picture, and not while the mouse holds something
-  if (io.WantCaptureMouse || grabbing_ || !worker_.has_snapshot()) return;
+  // only over the picture, and not while the mouse holds something or cuts
+  if (io.WantCaptureMouse || grabbing_ || cutting_ || !worker_.has_snapshot()) return;
   const Snapshot& snap = worker_.snapshot();
   if (!snap.geometry || !snap.geometry->has_particles()) return;
   int win_w = 1, win_h = 1;

@@ -9,6 +9,7 @@
 
 #include "app/gui_app.h"
 #include "app/view_fit.h"
+#include "output/series_row.h"
 #include "render/frame_writer.h"
 
 namespace periflex {
@@ -88,6 +89,16 @@ void GuiApp::panel_simulation() {
   dump_.note_item("reset");
   ImGui::SameLine();
   if (ImGui::Button("Reload")) send(SimCommand::make(Kind::kReload));
+  // the knife: a left-drag over the picture cuts the bonds it crosses (undone by Reset)
+  if (has_particles(worker_.snapshot())) {
+    ImGui::SameLine();
+    if (ImGui::Checkbox("knife (K)", &knife_)) {
+      cutting_ = false;
+      log_.add(knife_ ? "knife on (ui)" : "knife off (ui)");
+    }
+    dump_.note_item("knife");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("drag across a flexible body to cut its bonds; Reset undoes");
+  }
 
   // several steps at once, or up to a time: a single step of a fracture scene is 0.4 us
   ImGui::PushItemWidth(110.0f);
@@ -340,18 +351,28 @@ void GuiApp::panel_deformation() {
 }
 
 void GuiApp::panel_plots() {
+  // the plot window, and a line per main quantity for a glance
+  ImGui::Checkbox("plot window (P)", &show_plot_);
+  dump_.note_item("plot_toggle");
   const bool particles = has_particles(worker_.snapshot());
   const bool constrained = status_.info.constraint_equations > 0;
   ImGui::Text("t = %.4g .. %.4g s, %zu points", history_.first_time(), history_.last_time(), history_.size());
-  for (int k = 0; k < PlotHistory::kSeriesCount; ++k) {
-    if (!particles && (k == PlotHistory::kBrokenBonds || k == PlotHistory::kMaxDamage)) continue;
-    if (!constrained && k == PlotHistory::kViolation) continue;
-    const std::vector<float>& v = history_.values(k);
+  static const char* glance[] = {"kinetic", "potential_gravity", "potential_elastic", "energy_balance",
+                                 "violation_position", "broken_bonds", "max_damage", "steps_per_second"};
+  for (const char* name : glance) {
+    const std::string column = name;
+    if (!particles && (column == "broken_bonds" || column == "max_damage")) continue;
+    if (!constrained && column == "violation_position") continue;
+    const int k = history_.index_of(column);
+    if (k < 0) continue;
+    const std::vector<double>& v = history_.values(k);
     char overlay[64];
-    std::snprintf(overlay, sizeof overlay, "%.4g", v.empty() ? 0.0 : double(v.back()));
-    ImGui::Text("%s", PlotHistory::name(k));
-    ImGui::PlotLines(("##plot" + std::to_string(k)).c_str(), v.data(), static_cast<int>(v.size()), 0, overlay,
-                     FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 50.0f));
+    std::snprintf(overlay, sizeof overlay, "%.4g", v.empty() ? 0.0 : v.back());
+    const std::string unit = series_unit(column);
+    ImGui::Text("%s%s", name, unit.empty() ? "" : (" [" + unit + "]").c_str());
+    const auto value = [](void* data, int i) { return static_cast<float>((*static_cast<const std::vector<double>*>(data))[i]); };
+    ImGui::PlotLines(("##plot" + column).c_str(), value, const_cast<std::vector<double>*>(&v), static_cast<int>(v.size()),
+                     0, overlay, FLT_MAX, FLT_MAX, ImVec2(ImGui::GetContentRegionAvail().x, 40.0f));
   }
 }
 

@@ -36,11 +36,13 @@ Arity arity(const std::string& verb) {
   static const std::set<std::string> none = {"run", "resume", "pause", "reset", "reload", "fit",
                                              "stop_record", "release", "quit"};
   static const std::set<std::string> one = {"scene", "set", "speed", "colormap", "field", "follow",
-                                            "screenshot", "screenshot_ui", "wait", "expect"};
+                                            "screenshot", "screenshot_ui", "wait", "expect", "inspect"};
   if (none.count(verb)) return {0, 0};
   if (one.count(verb)) return {1, 1};
   if (verb == "step") return {0, 1};
   if (verb == "range") return {1, 2};
+  if (verb == "plot") return {1, 2};
+  if (verb == "cut") return {4, 4};
   if (verb == "show" || verb == "record" || verb == "grab" || verb == "drag") return {2, 2};
   return {99, 0};  // unknown
 }
@@ -68,6 +70,9 @@ void check_arguments(const ScriptAction& a) {
   if (a.verb == "grab" || a.verb == "drag") {
     number_at(0);
     number_at(1);
+  }
+  if (a.verb == "cut") {
+    for (size_t i = 0; i < 4; ++i) number_at(i);
   }
   if (a.verb == "range" && !(a.args.size() == 1 && a.args[0] == "auto")) {
     if (a.args.size() != 2) fail(a.text, "range takes 'auto' or MIN MAX");

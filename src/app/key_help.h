@@ -11,13 +11,16 @@ struct KeyHelp {
   const char* action;
 };
 
-inline constexpr std::array<KeyHelp, 15> kKeyHelp = {{
+inline constexpr std::array<KeyHelp, 18> kKeyHelp = {{
     {"F1", "show or hide this list"},
     {"Space", "run / pause"},
     {"Right arrow", "one step (pauses first; hold to repeat)"},
     {"Backspace", "reset to t = 0 (keeps the live settings)"},
     {"F", "fit the view to the scene (and stop following a body)"},
     {"D", "undeformed shape, and back to the magnification before"},
+    {"P", "show or hide the plot window (wheel: zoom, drag: pan, double-click: whole run)"},
+    {"K", "knife on / off"},
+    {"Left-drag with the knife on", "cut the bonds the segment crosses (live; Backspace resets)"},
     {"S", "screenshot periflex_<scene>_t<time>.png in the current folder"},
     {"Ctrl+Q", "quit"},
     {"Right-drag", "pan"},

@@ -1,5 +1,6 @@
-// Time series for the plots panel, one value per snapshot the render thread sees. Bounded:
-// when full, the older half is thinned to every second value, so a long run keeps its whole
+// Time series for the plots, one row per snapshot the render thread sees: every column of
+// series.csv the snapshot carries (output/series_row.h), plus the solver's steps/s. Bounded:
+// when full, the older half is thinned to every second row, so a long run keeps its whole
 // history at a coarser spacing. No GL.
 #pragma once
 
@@ -12,61 +13,31 @@ namespace periflex {
 
 class PlotHistory {
  public:
-  enum Series {
-    kKinetic, kPotential, kElastic, kDissipated, kBalance, kViolation, kBrokenBonds, kMaxDamage,
-    kStepsPerSecond, kSeriesCount
-  };
-  static const char* name(int series) {
-    static const char* names[kSeriesCount] = {"kinetic energy", "gravity potential", "elastic energy",
-                                              "dissipated + fracture", "energy balance",
-                                              "constraint violation |Phi|", "broken bonds",
-                                              "max damage", "steps/s"};
-    return names[series];
-  }
-
   explicit PlotHistory(size_t capacity = 2000) : capacity_(capacity) {}
 
-  // Appends the values of a snapshot (once per simulation step it shows).
-  void add(const Snapshot& s, double steps_per_second) {
-    if (s.step == last_step_ && !times_.empty()) return;
-    last_step_ = s.step;
-    if (times_.size() >= capacity_) thin();
-    times_.push_back(s.time);
-    const Energies& e = s.energies;
-    const double values[kSeriesCount] = {e.kinetic, e.potential_gravity, e.potential_elastic,
-                                         e.dissipated + e.fracture, e.balance, s.violation_position,
-                                         static_cast<double>(s.broken_bonds), s.max_damage,
-                                         steps_per_second};
-    for (int k = 0; k < kSeriesCount; ++k) series_[k].push_back(static_cast<float>(values[k]));
-  }
-  void clear() {
-    times_.clear();
-    for (auto& v : series_) v.clear();
-    last_step_ = -1;
-  }
-  const std::vector<float>& values(int series) const { return series_[series]; }
-  size_t size() const { return times_.size(); }
-  double first_time() const { return times_.empty() ? 0.0 : times_.front(); }
-  double last_time() const { return times_.empty() ? 0.0 : times_.back(); }
+  // Appends the row of a snapshot (once per simulation step it shows). A snapshot without a
+  // series row gives the columns the snapshot itself holds (time, energies, violation, damage).
+  // Other columns than those held start a new history.
+  void add(const Snapshot& s, double steps_per_second);
+  void clear();
+
+  // column names, "t" first and "steps_per_second" last
+  const std::vector<std::string>& columns() const { return names_; }
+  // the index of a column, -1 when there is none of that name
+  int index_of(const std::string& name) const;
+  const std::vector<double>& values(int column) const { return columns_[column]; }
+  size_t size() const { return columns_.empty() ? 0 : columns_[0].size(); }
+  double first_time() const { return size() ? columns_[0].front() : 0.0; }
+  double last_time() const { return size() ? columns_[0].back() : 0.0; }
 
  private:
-  // keep every second of the older half, all of the newer half
-  void thin() {
-    const size_t half = times_.size() / 2;
-    const auto squeeze = [half](auto& v) {
-      size_t out = 0;
-      for (size_t i = 0; i < half; i += 2) v[out++] = v[i];
-      for (size_t i = half; i < v.size(); ++i) v[out++] = v[i];
-      v.resize(out);
-    };
-    squeeze(times_);
-    for (auto& v : series_) squeeze(v);
-  }
+  void thin();
 
   size_t capacity_;
   long last_step_ = -1;
-  std::vector<double> times_;
-  std::vector<float> series_[kSeriesCount];
+  std::vector<std::string> names_;
+  std::vector<std::vector<double>> columns_;
+  std::vector<double> row_;
 };
 
 }  // namespace periflex

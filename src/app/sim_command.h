@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "solve/simulation.h"
 
@@ -23,6 +24,9 @@ struct SimCommand {
     kSetParameter,   // set one live setting by name: `text` = key, `value` = value
     kSetSpeed,       // real-time factor `number`; <= 0 runs as fast as possible
     kMouseSpring,    // set (or, when `spring` is empty, release) the mouse spring
+    kCut,            // a knife: cut the bonds the segment `from` .. `to` crosses (drawn_x, drawn_y:
+                     // the particles where the window draws them)
+    kReactions,      // snapshots carry the joints' reactions (count 1) or not (count 0)
     kRecord,         // publish recording snapshots every `number` simulated seconds; 0 stops
     kQuit,           // end the simulation thread
   };
@@ -33,6 +37,8 @@ struct SimCommand {
   double number = 0.0;
   LiveSettings settings;
   std::optional<MouseSpring> spring;
+  Vec2 from = Vec2::Zero(), to = Vec2::Zero();
+  std::vector<float> drawn_x, drawn_y;
   std::string origin = "ui";  // who asked, for the log: "ui", "key", "mouse", "script"
 
   static SimCommand make(Kind kind, std::string origin = "ui") {

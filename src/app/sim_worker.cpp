@@ -294,6 +294,15 @@ void SimWorker::apply(SimCommand& c) {
                                      : "grab particle " + std::to_string(c.spring->particle) + by);
       }
       break;
+    case Kind::kReactions:
+      model_->set_reactions(c.count != 0);
+      break;
+    case Kind::kCut: {
+      // paused or running, between two steps
+      const long cut = model_->cut_bonds(c.from, c.to, c.drawn_x, c.drawn_y);
+      log_.add("knife: " + std::to_string(cut) + (cut == 1 ? " bond cut" : " bonds cut") + by);
+      break;
+    }
     case Kind::kRecord:
       record_interval_ = c.number > 0.0 ? c.number : 0.0;
       record_start_ = model_->time();

@@ -39,6 +39,15 @@ class SteppedModel {
   virtual void apply(const LiveSettings& settings) = 0;         // may throw InputError
   // returns the spring's total stiffness [N/m] (0: nothing held)
   virtual double set_mouse_spring(const std::optional<MouseSpring>& spring) = 0;
+  // whether fill_snapshot adds the joints' reactions (a solve of the equations of motion more
+  // per snapshot, asked only while the window shows them)
+  virtual void set_reactions(bool /*wanted*/) {}
+  // cuts the bonds the segment crosses (Simulation::cut_bonds); returns the pairs cut. A model
+  // without flexible bodies has nothing to cut.
+  virtual long cut_bonds(const Vec2& /*from*/, const Vec2& /*to*/, const std::vector<float>& /*drawn_x*/,
+                         const std::vector<float>& /*drawn_y*/) {
+    return 0;
+  }
 };
 
 // How the worker gets scenes and models: load reads a file (throws InputError), build makes a

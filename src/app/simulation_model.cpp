@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "app/sim_worker.h"
+#include "output/series_row.h"
 #include "scene/scene_budget.h"
 #include "scene/scene_loader.h"
 
@@ -21,15 +22,33 @@ class SimulationModel final : public SteppedModel {
   long step_count() const override { return sim_.step_count(); }
   double end_time() const override { return sim_.end_time(); }
   const ModelInfo& info() const override { return sim_.info(); }
-  void fill_snapshot(Snapshot& out) const override { sim_.fill_snapshot(out); }
+  void fill_snapshot(Snapshot& out) const override {
+    // the joints' reactions while the rigid-body inspector shows them
+    out.with_reactions = reactions_;
+    sim_.fill_snapshot(out);
+    // the row series.csv would hold now, for the plots
+    const bool damage = sim_.info().particles > 0, contact = !sim_.scene().contacts.empty();
+    if (!columns_) {
+      columns_ = std::make_shared<const std::vector<std::string>>(series_columns(sim_.probe_columns(), damage, contact));
+    }
+    out.series_columns = columns_;
+    series_values(sim_.sample(), damage, contact, out.series);
+  }
   LiveSettings settings() const override { return sim_.settings(); }
   void apply(const LiveSettings& settings) override { sim_.apply(settings); }
   double set_mouse_spring(const std::optional<MouseSpring>& spring) override {
     return sim_.set_mouse_spring(spring);
   }
+  void set_reactions(bool wanted) override { reactions_ = wanted; }
+  long cut_bonds(const Vec2& from, const Vec2& to, const std::vector<float>& drawn_x,
+                 const std::vector<float>& drawn_y) override {
+    return sim_.cut_bonds(from, to, drawn_x, drawn_y);
+  }
 
  private:
   Simulation sim_;
+  mutable std::shared_ptr<const std::vector<std::string>> columns_;
+  bool reactions_ = false;
 };
 
 }  // namespace

@@ -9,21 +9,14 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "output/series_row.h"
+
 namespace periflex {
 
 SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns,
                            bool with_damage, bool with_contact)
     : path_(path), with_damage_(with_damage), with_contact_(with_contact) {
-  columns_ = {"t",           "kinetic",     "potential_gravity", "potential_elastic", "dissipated",
-              "fracture",    "external_work", "driver_work",     "energy_balance",    "violation_position",
-              "violation_velocity"};
-  if (with_damage_) {
-    for (const char* c : {"broken_bonds", "mean_damage", "max_damage"}) columns_.push_back(c);
-  }
-  if (with_contact_) {
-    for (const char* c : {"contact_force_total", "contact_count"}) columns_.push_back(c);
-  }
-  columns_.insert(columns_.end(), probe_columns.begin(), probe_columns.end());
+  columns_ = series_columns(probe_columns, with_damage_, with_contact_);
 
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
@@ -50,20 +43,8 @@ void SeriesWriter::write_all(const std::string& text) {
 }
 
 bool SeriesWriter::write(const Sample& s) {
-  const Energies& e = s.energies;
-  std::vector<double> values = {s.time,       e.kinetic,     e.potential_gravity, e.potential_elastic,
-                                e.dissipated, e.fracture,    e.external_work,     e.driver_work,
-                                e.balance,    s.violation_position, s.violation_velocity};
-  if (with_damage_) {
-    values.push_back(static_cast<double>(s.broken_bonds));
-    values.push_back(s.mean_damage);
-    values.push_back(s.max_damage);
-  }
-  if (with_contact_) {
-    values.push_back(s.contact_force_total);
-    values.push_back(static_cast<double>(s.contact_count));
-  }
-  values.insert(values.end(), s.probe_values.begin(), s.probe_values.end());
+  series_values(s, with_damage_, with_contact_, values_);
+  const std::vector<double>& values = values_;
   for (double v : values) {
     if (!std::isfinite(v)) return false;
   }

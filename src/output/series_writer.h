@@ -35,6 +35,7 @@ class SeriesWriter {
   bool with_damage_ = false, with_contact_ = false;
   long rows_ = 0;
   std::string line_;
+  std::vector<double> values_;
 };
 
 }  // namespace periflex

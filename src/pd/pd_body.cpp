@@ -607,6 +607,47 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
   return update;
 }
 
+FractureUpdate PdBody::cut_bonds(const Eigen::VectorXd& q, const std::vector<double>& positions, const Vec2& a,
+                                 const Vec2& b) {
+  Impl& m = *impl_;
+  FractureUpdate update;
+  const double* p = positions.size() == 2 * static_cast<size_t>(m.n()) ? positions.data() : m.pos(q);
+  const double before = potential_energy(q);
+  // each pair once (i < j), both stored directions broken together
+  BondStore& bonds = m.bonds;
+  std::vector<int> touched;
+  for (int i = 0; i < m.n(); ++i) {
+    const Vec2 pi(p[2 * i], p[2 * i + 1]);
+    for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) {
+      const int j = bonds.neighbor[k];
+      if (j <= i || bonds.broken[k]) continue;
+      if (!notch_cuts_bond(pi, Vec2(p[2 * j], p[2 * j + 1]), a, b, 1e-9 * m.dx * m.dx)) continue;
+      bonds.broken[k] = 1;
+      bonds.stiffness[k] = 0.0f;
+      for (int64_t r = bonds.row[j]; r < bonds.row[j + 1]; ++r) {
+        if (bonds.neighbor[r] != i) continue;
+        bonds.broken[r] = 1;
+        bonds.stiffness[r] = 0.0f;
+      }
+      ++update.bonds_broken;
+      if (touched.empty() || touched.back() != i) touched.push_back(i);
+      touched.push_back(j);
+    }
+  }
+  if (update.bonds_broken == 0) return update;
+  // state-based: the weighted volumes count intact bonds only
+  if (m.state_based) {
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    refresh_weighted_volumes(m.bonds, m.lps, touched);
+  }
+  m.stretch_cache_valid = false;
+  m.broken_pairs += update.bonds_broken;
+  update.energy_released = before - potential_energy(q);
+  update.forces_stale = true;
+  return update;
+}
+
 void PdBody::damage(std::vector<float>& out) const {
   const Impl& m = *impl_;
   const BondStore& b = m.bonds;

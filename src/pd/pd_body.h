@@ -76,6 +76,12 @@ class PdBody : public ForceElement {
   // bonds or positions on one thread between two parallel loops.
   bool breaks_in_evaluation() const;
   FractureUpdate take_evaluation_breaks();
+  // A knife: breaks every intact bond whose ends, at `positions` (x0, y0, x1, y1, ... of this
+  // body's particles as the caller sees them; empty: the positions at q), the segment [a, b]
+  // separates, by the test a scene's notch makes at set-up. Breaks them whether fracture is on
+  // or not, no-fail regions included. Reports the pairs cut and the strain energy they held at q.
+  FractureUpdate cut_bonds(const Eigen::VectorXd& q, const std::vector<double>& positions, const Vec2& a,
+                           const Vec2& b);
   // When a bond past s0 breaks; the solver sets it for its integrator (docs/peridynamics.md §3).
   enum class BreakTiming {
     kInEvaluation,  // in the force evaluation that first sees it, which it takes no part in (the

@@ -108,6 +108,12 @@ class Dynamics final : public OdeSystem {
                   Eigen::Vector3d& power) override;
   // Multipliers of the active rows from the last derivative() call.
   const Eigen::VectorXd& multipliers() const { return lambda_; }
+  // The multiplier of global constraint row `row` from that call (0 for a row left out).
+  double row_multiplier(int row) const {
+    if (row < 0 || row >= static_cast<int>(active_index_.size())) return 0.0;
+    const int a = active_index_[row];
+    return a >= 0 && a < lambda_.size() ? lambda_[a] : 0.0;
+  }
 
   // Writes the imposed q and qd of the prescribed particle coordinates at t.
   void impose_prescribed(double t, Eigen::VectorXd& q, Eigen::VectorXd& qd) const;

@@ -793,7 +793,10 @@ void Simulation::fill_snapshot(Snapshot& out) const {
 
   // rigid poses, ground first
   out.bodies.assign(1, Snapshot::Pose{});
-  for (size_t k = 0; k < m.bodies.size(); ++k) out.bodies.push_back({q[3 * k], q[3 * k + 1], q[3 * k + 2]});
+  for (size_t k = 0; k < m.bodies.size(); ++k) {
+    out.bodies.push_back({q[3 * k], q[3 * k + 1], q[3 * k + 2], qd[3 * k], qd[3 * k + 1], qd[3 * k + 2]});
+  }
+  fill_reactions(out);
 
   // particles
   out.px.clear();
@@ -903,6 +906,65 @@ void Simulation::apply(const LiveSettings& settings) {
   }
   s.integrator->reset();
   s.build_info();
+}
+
+void Simulation::fill_reactions(Snapshot& out) const {
+  Impl& s = *impl_;
+  out.reactions.clear();
+  if (!out.with_reactions || !s.dynamics->has_constraints()) return;
+  // the multipliers at this very state (not at a trial stage of the last step)
+  Eigen::VectorXd qdd;
+  Eigen::Vector3d power;
+  try {
+    s.dynamics->derivative(s.time, s.state.q, s.state.qd, qdd, power);
+  } catch (const NumericalError&) {
+    return;
+  }
+  // each block's rows of -Phi_q^T lambda on the rigid coordinates it touches
+  const int rigid = s.model->rigid_coordinates;
+  Triplets jacobian;
+  for (const auto& block : s.model->constraints) {
+    if (block.origin == ConstraintBlock::Origin::kAttachment) continue;
+    jacobian.clear();
+    block.constraint->jacobian(s.state.q, s.time, 0, jacobian);
+    const size_t first = out.reactions.size();
+    for (const auto& e : jacobian) {
+      if (e.col() >= rigid) continue;
+      const int body = e.col() / 3 + 1;
+      auto it = std::find_if(out.reactions.begin() + static_cast<std::ptrdiff_t>(first), out.reactions.end(),
+                             [body](const Snapshot::Reaction& r) { return r.body == body; });
+      if (it == out.reactions.end()) {
+        out.reactions.push_back({block.constraint->name(), body, 0.0, 0.0, 0.0});
+        it = out.reactions.end() - 1;
+      }
+      const double f = -e.value() * s.dynamics->row_multiplier(block.first_row + e.row());
+      (e.col() % 3 == 0 ? it->fx : e.col() % 3 == 1 ? it->fy : it->moment) += f;
+    }
+  }
+}
+
+long Simulation::cut_bonds(const Vec2& a, const Vec2& b, const std::vector<float>& drawn_x,
+                           const std::vector<float>& drawn_y) {
+  Impl& s = *impl_;
+  long cut = 0;
+  size_t first = 0;
+  std::vector<double> positions;
+  for (auto& flex : s.model->flex_bodies) {
+    // this body's particles as the caller shows them, when it gave every particle
+    const size_t n = static_cast<size_t>(flex->particle_count());
+    positions.clear();
+    if (drawn_x.size() == drawn_y.size() && first + n <= drawn_x.size()) {
+      for (size_t i = first; i < first + n; ++i) positions.insert(positions.end(), {drawn_x[i], drawn_y[i]});
+    }
+    first += n;
+    const FractureUpdate update = flex->cut_bonds(s.state.q, positions, a, b);
+    s.fracture_energy += update.energy_released;
+    s.broken_bonds += update.bonds_broken;
+    cut += update.bonds_broken;
+    // the integrator's stored forces no longer hold
+    if (update.forces_stale) s.integrator->reset();
+  }
+  return cut;
 }
 
 double Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {

@@ -102,6 +102,8 @@ class Simulation {
   // trajectory at every step needs (sample() computes energies and violations too).
   Vec2 probe_position(int index) const;
   void fill_snapshot(Snapshot& out) const;
+  // The joints' reactions of fill_snapshot, when out.with_reactions is set (Snapshot::Reaction).
+  void fill_reactions(Snapshot& out) const;
 
   LiveSettings settings() const;
   void apply(const LiveSettings& settings);
@@ -111,6 +113,12 @@ class Simulation {
   // as stiffly as the explicit step allows (so a drag deforms and can tear the body). The same
   // grab again only moves the target. Returns the total stiffness [N/m] (0: nothing held).
   double set_mouse_spring(const std::optional<MouseSpring>& spring);
+  // A knife across the flexible bodies between steps (PdBody::cut_bonds): breaks the bonds the
+  // segment [a, b] separates, booking their strain energy as fracture energy. drawn_x, drawn_y:
+  // every particle where the caller shows it (snapshot order), so what is cut is what the eye
+  // sees crossed under a magnified deformation; empty: where the particles are. Returns the pairs cut.
+  long cut_bonds(const Vec2& a, const Vec2& b, const std::vector<float>& drawn_x = {},
+                 const std::vector<float>& drawn_y = {});
 
   // Wall-clock seconds spent in each part of stepping so far, for profiling reports (forces and
   // constraints estimated from one evaluation in eight).

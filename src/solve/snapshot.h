@@ -57,7 +57,10 @@ struct Snapshot {
   double time = 0.0;
   long step = 0;
 
-  struct Pose { double x = 0.0, y = 0.0, angle = 0.0; };
+  struct Pose {
+    double x = 0.0, y = 0.0, angle = 0.0;
+    double vx = 0.0, vy = 0.0, omega = 0.0;  // their rates
+  };
   std::vector<Pose> bodies;        // same order as geometry->bodies (ground first)
 
   // Particles of all flexible bodies, concatenated in geometry order.
@@ -90,6 +93,24 @@ struct Snapshot {
   double violation_velocity = 0.0;
   long broken_bonds = 0;
   double max_damage = 0.0;
+
+  // One row of series.csv at this instant (output/series_row.h) and its column names, for the
+  // window's plots: filled by the window's model only, empty elsewhere.
+  std::shared_ptr<const std::vector<std::string>> series_columns;
+  std::vector<double> series;
+
+  // The joints' and drivers' reactions at this instant: the Lagrange multipliers as the force
+  // and moment -Phi_q^T lambda they apply to each rigid body they hold, the moment about the
+  // body's reference point. Filled only when the caller sets with_reactions (it costs a
+  // solve of the equations of motion).
+  struct Reaction {
+    std::string joint;
+    int body = 0;                  // geometry index (0: ground is never listed)
+    double fx = 0.0, fy = 0.0;     // [N]
+    double moment = 0.0;           // [N m]
+  };
+  bool with_reactions = false;
+  std::vector<Reaction> reactions;
 };
 
 }  // namespace periflex

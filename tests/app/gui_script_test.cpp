@@ -63,7 +63,12 @@ TEST(GuiScript, RejectsBadActionsNamingThem) {
                        "range 1@2",        // range needs auto or two numbers
                        "pause now@1",      // pause takes no argument
                        "grab 0.1@1",       // grab needs X and Y
-                       "drag x y@1"};      // not numbers
+                       "drag x y@1",       // not numbers
+                       "cut 0 0 1@1",      // the knife needs two points
+                       "cut 0 0 1 y@1",    // not a number
+                       "plot@1",           // plot needs a column
+                       "plot a b c@1",     // at most Y and X
+                       "inspect@1"};       // inspect needs a body (or none)
   for (const char* script : bad) {
     try {
       parse_script(script);
@@ -72,6 +77,17 @@ TEST(GuiScript, RejectsBadActionsNamingThem) {
       EXPECT_EQ(e.where().key, "--script") << script;
     }
   }
+}
+
+TEST(GuiScript, ParsesThePlotKnifeAndInspectorActions) {
+  const std::vector<ScriptAction> a =
+      parse_script("plot probe.bob.y probe.bob.x@2; cut 0.3 0.05 0.3 -0.05@3; inspect bob@4; plot kinetic@5");
+  ASSERT_EQ(a.size(), 4u);
+  EXPECT_EQ(a[0].verb, "plot");
+  EXPECT_EQ(a[0].args, (std::vector<std::string>{"probe.bob.y", "probe.bob.x"}));
+  EXPECT_EQ(a[1].args.size(), 4u);
+  EXPECT_EQ(a[2].args, (std::vector<std::string>{"bob"}));
+  EXPECT_EQ(a[3].args.size(), 1u);
 }
 
 }  // namespace

@@ -1,0 +1,24 @@
+// The columns of series.csv and the values of one row, shared by the file's writer and the
+// window's plots, so a column plotted in the window is the column the run writes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "solve/simulation.h"
+
+namespace periflex {
+
+// Column names in file order: time, energies, violations, then the damage columns (scenes with
+// particles), the contact columns (scenes with [[contact]]) and the probe columns.
+std::vector<std::string> series_columns(const std::vector<std::string>& probe_columns, bool with_damage,
+                                        bool with_contact);
+
+// The values of `sample` in the order of series_columns (out is replaced).
+void series_values(const Sample& sample, bool with_damage, bool with_contact, std::vector<double>& out);
+
+// The unit of a column as docs/running.md states it ("s", "J", "m", "m/s", "rad", "rad/s", "N",
+// "1/s"), "-" for counts and fractions, "" for a column it does not know.
+std::string series_unit(const std::string& column);
+
+}  // namespace periflex

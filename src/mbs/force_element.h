@@ -29,7 +29,7 @@ class ForceElement {
   // Adds the pairs (row, column) of g whose forces move when q or qd of the column moves, at
   // the state q (a superset is fine; the diagonal is implied). False when the element cannot
   // tell, and an implicit integrator then finds the pattern by perturbing every coordinate.
-  virtual bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const { return false; }
+  virtual bool add_coupling(const Eigen::VectorXd& /*q*/, SparsityPattern& /*pattern*/) const { return false; }
 };
 
 }  // namespace periflex

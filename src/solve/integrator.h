@@ -33,7 +33,7 @@ class OdeSystem {
   // The structure of d qdd / d(q, qd) at (t, q): the pairs (row, column) a change of q or qd in
   // the column can move, into pattern (reset to the size of q and finished). False when the
   // system cannot tell; an implicit integrator then finds it by perturbing every coordinate.
-  virtual bool jacobian_pattern(double t, const Eigen::VectorXd& q, SparsityPattern& pattern) { return false; }
+  virtual bool jacobian_pattern(double /*t*/, const Eigen::VectorXd& /*q*/, SparsityPattern& /*pattern*/) { return false; }
 };
 
 class Integrator {

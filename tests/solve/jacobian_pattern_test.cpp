@@ -130,7 +130,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(PatternCase{"DrivenGrips", "notched_plate.toml", {"flex_body.plate.grid_spacing=2e-3"}},
                       PatternCase{"FlexibleRodInAMechanism", "flexible_slider_crank.toml", {}},
                       PatternCase{"StateBasedPlates", "notched_plate_models.toml", {}}),
-    [](const ::testing::TestParamInfo<PatternCase>& info) { return std::string(info.param.name); });
+    [](const ::testing::TestParamInfo<PatternCase>& param) { return std::string(param.param.name); });
 
 // Force evaluations of the first HHT step of the notched plate at spacing dx.
 long first_step_evaluations(double dx, bool pattern, int* coordinates) {

@@ -246,7 +246,7 @@ void write_jobs(const SweepDef& sweep, const std::vector<SweepRun>& runs, const 
 
 CLI::App* add_sweep_subcommand(CLI::App& app, SweepOptions& o) {
   auto* cmd = app.add_subcommand("sweep", "Runs a grid of scene values (a sweep file), or gathers one: sweep.csv");
-  cmd->add_option("sweep", o.sweep_path, "Sweep file (TOML), e.g. scenes/studies/plate_sweep.toml");
+  cmd->add_option("sweep", o.sweep_path, "Sweep file (TOML), e.g. scenes/studies/notched_plate_sweep.toml");
   cmd->add_option("--out", o.out_dir, "Output directory (default out/sweep-<name>)");
   cmd->add_option("--jobs", o.jobs, "Runs at once on this machine (overrides the sweep's jobs)")
       ->check(CLI::Range(1, 1024));

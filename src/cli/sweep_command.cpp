@@ -1,7 +1,5 @@
 #include "cli/sweep_command.h"
 
-#include <unistd.h>
-
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
@@ -80,24 +78,12 @@ std::string csv_field(const std::string& text) {
   return out + "\"";
 }
 
-// The path of a program on PATH, or empty.
-std::string find_on_path(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  std::stringstream dirs(path ? path : "");
-  for (std::string dir; std::getline(dirs, dir, ':');) {
-    const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
-    std::error_code error;
-    if (fs::is_regular_file(candidate, error) && access(candidate.c_str(), X_OK) == 0) return candidate.string();
-  }
-  return "";
-}
-
 // sweep.png with gnuplot when it is installed: the first series column against the first
 // parameter, one curve per value of the second. Returns what it did, for the user.
 std::string plot(const fs::path& dir, const std::vector<std::string>& keys, const std::vector<std::string>& series,
                  const nlohmann::json& runs, size_t figures) {
   if (series.empty() || keys.empty()) return "no plot: the sweep names no series column";
-  const std::string gnuplot = find_on_path("gnuplot");
+  const std::string gnuplot = find_program("gnuplot");
   const fs::path png = fs::absolute(dir / "sweep.png"), csv = fs::absolute(dir / "sweep.csv");
   const size_t y = 1 + keys.size() + figures + 1;  // column of series[0], 1-based
   std::ostringstream gp;

@@ -5,6 +5,7 @@
 //   periflex check SCENE           validate and describe a scene
 //   periflex gui [SCENE] [...]     interactive visualiser
 //   periflex study STUDY.toml      error against run time across integrators and steps
+//   periflex sweep SWEEP.toml      a grid of scene values, run locally or as a job list
 //   periflex stability [--quick]   the stiff and extreme cases, with a table of outcomes
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include "cli/scene_setup.h"
 #include "cli/stability_command.h"
 #include "cli/study_command.h"
+#include "cli/sweep_command.h"
 #include "core/error.h"
 #include "core/thread_waiting.h"
 
@@ -108,6 +110,8 @@ int run_main(int argc, char** argv) {
 
   StudyOptions study;
   auto* study_cmd = add_study_subcommand(app, study);
+  SweepOptions sweep;
+  auto* sweep_cmd = add_sweep_subcommand(app, sweep);
   StabilityOptions stability;
   auto* stability_cmd = add_stability_subcommand(app, stability);
 
@@ -123,6 +127,7 @@ int run_main(int argc, char** argv) {
   if (*run_cmd) return run_command(run);
   if (*check_cmd) return check_command(check_scene, check_overrides);
   if (*study_cmd) return study_command(study);
+  if (*sweep_cmd) return sweep_command(sweep);
   if (*stability_cmd) return stability_command(stability);
   if (*gui_cmd) {
     if (gui.scene_path.empty()) gui.scene_path = default_scene_path();

@@ -162,4 +162,21 @@ double ParticleContact::critical_time_step() const {
   return 1.0 / std::sqrt(bonds + 1.0 / (contact * contact));
 }
 
+bool ParticleContact::add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const {
+  refresh(q);
+  for (size_t a = 0; a < coordinate_.size(); ++a) {
+    const int xa = coordinate_[a];
+    for (int64_t e = candidates_.row[a]; e < candidates_.row[a + 1]; ++e) {
+      const int xb = coordinate_[candidates_.col[e]];
+      // the pair force on a moves with both coordinates of a and of b
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c) {
+          pattern.add(xa + r, xa + c);
+          pattern.add(xa + r, xb + c);
+        }
+    }
+  }
+  return true;
+}
+
 }  // namespace periflex

@@ -33,6 +33,8 @@ class ParticleContact final : public ContactElement {
                                 Eigen::VectorXd& g) override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+  // The candidate pairs of the Verlet list at q: a pair that comes into contact within the skin.
+  bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
 
   ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   double critical_time_step() const override;

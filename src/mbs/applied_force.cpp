@@ -13,4 +13,10 @@ double AppliedForce::external_power(const Eigen::VectorXd& q, const Eigen::Vecto
   return (magnitude_(t) * direction_).dot(point_.velocity(q, qd));
 }
 
+// the moment of a fixed-direction force about the body origin turns with the body
+bool AppliedForce::add_coupling(const Eigen::VectorXd&, SparsityPattern& pattern) const {
+  pattern.add_block(point_.coordinates(), point_.coordinates());
+  return true;
+}
+
 }  // namespace periflex

@@ -16,6 +16,7 @@ class AppliedForce : public ForceElement {
   const std::string& name() const override { return name_; }
   void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
   double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const override;
+  bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
   const BodyPoint& point() const { return point_; }
 
  private:

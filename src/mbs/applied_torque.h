@@ -14,6 +14,8 @@ class AppliedTorque : public ForceElement {
   const std::string& name() const override { return name_; }
   void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
   double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const override;
+  // constant in q and qd: no coupling
+  bool add_coupling(const Eigen::VectorXd&, SparsityPattern&) const override { return true; }
   int body() const { return body_; }
 
  private:

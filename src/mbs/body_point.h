@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "core/vec2.h"
 #include "mbs/constraint.h"
@@ -26,6 +27,8 @@ struct BodyPoint {
   int x_index() const { return body < 0 ? -1 : 3 * body; }
   int y_index() const { return body < 0 ? -1 : 3 * body + 1; }
   int phi_index() const { return body < 0 ? -1 : 3 * body + 2; }
+  // The body's three coordinates (-1 each for the ground), for sparsity patterns.
+  std::vector<int> coordinates() const { return {x_index(), y_index(), phi_index()}; }
 
   double angle(const Eigen::VectorXd& q) const { return body < 0 ? 0.0 : q[3 * body + 2]; }
   double angular_velocity(const Eigen::VectorXd& qd) const { return body < 0 ? 0.0 : qd[3 * body + 2]; }

@@ -6,6 +6,8 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "core/sparsity_pattern.h"
+
 namespace periflex {
 
 class ForceElement {
@@ -24,6 +26,10 @@ class ForceElement {
   virtual double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const {
     return 0.0;
   }
+  // Adds the pairs (row, column) of g whose forces move when q or qd of the column moves, at
+  // the state q (a superset is fine; the diagonal is implied). False when the element cannot
+  // tell, and an implicit integrator then finds the pattern by perturbing every coordinate.
+  virtual bool add_coupling(const Eigen::VectorXd& /*q*/, SparsityPattern& /*pattern*/) const { return false; }
 };
 
 }  // namespace periflex

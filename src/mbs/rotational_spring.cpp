@@ -33,4 +33,11 @@ double RotationalSpring::dissipation_power(const Eigen::VectorXd&, const Eigen::
   return damping_ * rate * rate;
 }
 
+// the torque moves with the two angles and their rates
+bool RotationalSpring::add_coupling(const Eigen::VectorXd&, SparsityPattern& pattern) const {
+  const std::vector<int> angles = {body_i_ < 0 ? -1 : 3 * body_i_ + 2, body_j_ < 0 ? -1 : 3 * body_j_ + 2};
+  pattern.add_block(angles, angles);
+  return true;
+}
+
 }  // namespace periflex

@@ -16,6 +16,7 @@ class RotationalSpring : public ForceElement {
   void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
   double potential_energy(const Eigen::VectorXd& q) const override;
   double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
+  bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
   int body_i() const { return body_i_; }
   int body_j() const { return body_j_; }
 

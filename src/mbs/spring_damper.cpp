@@ -53,4 +53,13 @@ double SpringDamper::external_power(const Eigen::VectorXd& q, const Eigen::Vecto
   return -actuator_(t) * rate;
 }
 
+// the force between the two points moves with all six coordinates of their bodies
+bool SpringDamper::add_coupling(const Eigen::VectorXd&, SparsityPattern& pattern) const {
+  std::vector<int> coordinates = p_i_.coordinates();
+  const std::vector<int> other = p_j_.coordinates();
+  coordinates.insert(coordinates.end(), other.begin(), other.end());
+  pattern.add_block(coordinates, coordinates);
+  return true;
+}
+
 }  // namespace periflex

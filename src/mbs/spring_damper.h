@@ -20,6 +20,7 @@ class SpringDamper : public ForceElement {
   double potential_energy(const Eigen::VectorXd& q) const override;
   double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const override;
+  bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
   const BodyPoint& point_i() const { return p_i_; }
   const BodyPoint& point_j() const { return p_j_; }
 

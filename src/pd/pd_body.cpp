@@ -513,6 +513,45 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
   }
 }
 
+bool PdBody::add_coupling(const Eigen::VectorXd&, SparsityPattern& pattern) const {
+  const Impl& m = *impl_;
+  const BondStore& bonds = m.bonds;
+  // both coordinates of particle i against both of particle j
+  auto couple = [&](int i, int j) {
+    const int r = m.offset + 2 * i, c = m.offset + 2 * j;
+    pattern.add(r, c);
+    pattern.add(r, c + 1);
+    pattern.add(r + 1, c);
+    pattern.add(r + 1, c + 1);
+  };
+  if (!m.state_based) {
+    for (int i = 0; i < m.n(); ++i) {
+      couple(i, i);
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b)
+        if (!bonds.broken[b]) couple(i, bonds.neighbor[b]);
+    }
+    return true;
+  }
+  // state-based: the particles within two intact bonds, each once per row (a stamp per particle)
+  std::vector<int> seen(m.n(), -1);
+  for (int i = 0; i < m.n(); ++i) {
+    auto reach = [&](int j) {
+      if (seen[j] == i) return;
+      seen[j] = i;
+      couple(i, j);
+    };
+    reach(i);
+    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+      if (bonds.broken[b]) continue;
+      const int j = bonds.neighbor[b];
+      reach(j);
+      for (int64_t d = bonds.row[j]; d < bonds.row[j + 1]; ++d)
+        if (!bonds.broken[d]) reach(bonds.neighbor[d]);
+    }
+  }
+  return true;
+}
+
 double PdBody::potential_energy(const Eigen::VectorXd& q) const {
   if (impl_->state_based) return state_based_strain_energy(impl_->bonds, impl_->lps, impl_->pos(q));
   return bond_strain_energy(impl_->bonds, impl_->pos(q));

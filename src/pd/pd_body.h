@@ -64,6 +64,9 @@ class PdBody : public ForceElement {
   double potential_energy(const Eigen::VectorXd& q) const override;  // strain energy
   double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const override;
+  // The force on a particle moves with its own coordinates and those of the particles it holds
+  // intact bonds to; state-based, also with those of their bonded neighbours (their dilation).
+  bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
 
   // Breaks every bond whose stretch exceeds s0 at q (never in no-fail regions) that no force
   // evaluation broke yet, and reports the bonds the evaluations since the last call broke.

@@ -106,6 +106,9 @@ class Dynamics final : public OdeSystem {
   // OdeSystem: accelerations and the dissipated / external / driver powers.
   void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd,
                   Eigen::Vector3d& power) override;
+  // The pattern of d qdd / d(q, qd) from the model (jacobian_pattern.cpp): the force elements'
+  // couplings, and what the constraint solve couples. False when a force element cannot tell.
+  bool jacobian_pattern(double t, const Eigen::VectorXd& q, SparsityPattern& pattern) override;
   // Multipliers of the active rows from the last derivative() call.
   const Eigen::VectorXd& multipliers() const { return lambda_; }
   // The multiplier of global constraint row `row` from that call (0 for a row left out).
@@ -184,6 +187,7 @@ class Dynamics final : public OdeSystem {
 
   SystemModel& model_;
   CorrectionDef correction_;
+  SparsityPattern force_pattern_;  // scratch of jacobian_pattern
   std::optional<MouseSpringForce> mouse_;
 
   // coordinate classes

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "core/sparsity_pattern.h"
 #include "scene/scene_def.h"
 
 namespace periflex {
@@ -29,6 +30,10 @@ class OdeSystem {
   virtual ~OdeSystem() = default;
   virtual void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd,
                           Eigen::Vector3d& power) = 0;
+  // The structure of d qdd / d(q, qd) at (t, q): the pairs (row, column) a change of q or qd in
+  // the column can move, into pattern (reset to the size of q and finished). False when the
+  // system cannot tell; an implicit integrator then finds it by perturbing every coordinate.
+  virtual bool jacobian_pattern(double /*t*/, const Eigen::VectorXd& /*q*/, SparsityPattern& /*pattern*/) { return false; }
 };
 
 class Integrator {

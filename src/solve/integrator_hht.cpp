@@ -128,11 +128,19 @@ class Hht final : public Integrator {
   // differences about (q1_, v1_), then its sparse LU factors.
   bool build_tangent(OdeSystem& system, double t, double h) {
     const Eigen::Index n = q1_.size();
-    if (!pattern_valid_ || pattern_size_ != n) find_pattern(system, t, h);
+    // the pattern from the model at this iterate (contacts and the rank of the constraints may
+    // change it); recoloured only when it changed. A system that cannot tell is perturbed once.
+    if (system.jacobian_pattern(t + h, q1_, trial_pattern_)) {
+      if (!pattern_valid_ || !(trial_pattern_ == pattern_)) use_pattern(trial_pattern_);
+    } else if (!pattern_valid_ || pattern_.size() != n) {
+      find_pattern(system, t, h);
+    }
+    const std::vector<int>& pattern_start = pattern_.start();
+    const std::vector<int>& pattern_rows = pattern_.rows();
     const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
     const double q_scale = std::max(q1_.lpNorm<Eigen::Infinity>(), 1e-6);
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(pattern_rows_.size() + n);
+    triplets.reserve(pattern_rows.size() + n);
     Eigen::VectorXd dq(n), dv(n), step_of(n);
     for (const std::vector<int>& columns : colours_) {
       // perturb every column of this colour at once: a = a1 + eps_j e_j
@@ -146,8 +154,8 @@ class Hht final : public Integrator {
       }
       system.derivative(t + h, q_trial_, v_trial_, f_trial_, power_trial_);
       for (int j : columns) {
-        for (int k = pattern_start_[j]; k < pattern_start_[j + 1]; ++k) {
-          const int i = pattern_rows_[k];
+        for (int k = pattern_start[j]; k < pattern_start[j + 1]; ++k) {
+          const int i = pattern_rows[k];
           const double g = (f_trial_[i] - f1_[i]) / step_of[j];
           triplets.emplace_back(i, j, -(1.0 + alpha_) * g);
         }
@@ -168,13 +176,13 @@ class Hht final : public Integrator {
     return true;
   }
 
-  // Which outputs each coordinate moves, by one perturbation per coordinate, and a greedy
-  // colouring of the columns so that columns of one colour share no row.
+  // Which outputs each coordinate moves, by one perturbation per coordinate: a force
+  // evaluation per coordinate, for systems that cannot give their pattern.
   void find_pattern(OdeSystem& system, double t, double h) {
     const Eigen::Index n = q1_.size();
     const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
     const double q_scale = std::max(q1_.lpNorm<Eigen::Infinity>(), 1e-6);
-    std::vector<std::vector<int>> rows_of(n);
+    trial_pattern_.reset(static_cast<int>(n));
     for (Eigen::Index j = 0; j < n; ++j) {
       const double eps = root_eps * std::max(std::abs(q1_[j]), q_scale) / (beta_ * h * h);
       q_trial_ = q1_;
@@ -183,34 +191,17 @@ class Hht final : public Integrator {
       v_trial_[j] += gamma_ * h * eps;
       system.derivative(t + h, q_trial_, v_trial_, f_trial_, power_trial_);
       for (Eigen::Index i = 0; i < n; ++i)
-        if (f_trial_[i] != f1_[i] || i == j) rows_of[j].push_back(static_cast<int>(i));
+        if (f_trial_[i] != f1_[i]) trial_pattern_.add(static_cast<int>(i), static_cast<int>(j));
     }
-    pattern_start_.assign(n + 1, 0);
-    pattern_rows_.clear();
-    for (Eigen::Index j = 0; j < n; ++j) {
-      pattern_rows_.insert(pattern_rows_.end(), rows_of[j].begin(), rows_of[j].end());
-      pattern_start_[j + 1] = static_cast<int>(pattern_rows_.size());
-    }
-    // greedy colouring: a column joins the first colour none of whose rows it touches
-    colours_.clear();
-    std::vector<std::vector<char>> row_used;
-    for (Eigen::Index j = 0; j < n; ++j) {
-      size_t c = 0;
-      for (; c < colours_.size(); ++c) {
-        bool clash = false;
-        for (int i : rows_of[j])
-          if (row_used[c][i]) { clash = true; break; }
-        if (!clash) break;
-      }
-      if (c == colours_.size()) {
-        colours_.emplace_back();
-        row_used.emplace_back(n, 0);
-      }
-      colours_[c].push_back(static_cast<int>(j));
-      for (int i : rows_of[j]) row_used[c][i] = 1;
-    }
+    trial_pattern_.finish();
+    use_pattern(trial_pattern_);
+  }
+
+  // Takes the pattern and colours its columns so that columns of one colour share no row.
+  void use_pattern(SparsityPattern& pattern) {
+    std::swap(pattern_, pattern);
+    colours_ = colour_columns(pattern_);
     pattern_valid_ = true;
-    pattern_size_ = n;
     analysed_ = false;
   }
 
@@ -239,10 +230,9 @@ class Hht final : public Integrator {
   // finite-difference scratch
   Eigen::VectorXd q_trial_, v_trial_, f_trial_;
   Eigen::Vector3d power_trial_ = Eigen::Vector3d::Zero();
-  // sparsity pattern (CSC: rows of each column) and column colours
+  // sparsity pattern (rows of each column) and column colours; the pattern last asked for
   bool pattern_valid_ = false;
-  Eigen::Index pattern_size_ = 0;
-  std::vector<int> pattern_start_, pattern_rows_;
+  SparsityPattern pattern_, trial_pattern_;
   std::vector<std::vector<int>> colours_;
   // the factorised iteration matrix
   Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;

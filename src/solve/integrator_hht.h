@@ -9,11 +9,13 @@
 // and the constraint reactions of the augmented system). The unknown a1 is found by Newton
 // iterations on the residual r(a1) = a1 - (1 + alpha) f(t1, q1, v1) + alpha f0, with the
 // iteration matrix S = I - (1 + alpha) (beta h^2 df/dq + gamma h df/dqd). S is sparse: its
-// pattern is found once by perturbing each coordinate, the columns are then coloured so that
-// columns sharing no row are perturbed together (Curtis, Powell & Reid 1974), and it is
-// factorised by sparse LU. For a peridynamic body the colours are about the number of
-// neighbours of a particle, so a tangent costs a few dozen force evaluations, not one per
-// coordinate. The tangent is kept from step to step while Newton converges quickly.
+// pattern comes from the model (bonds, force elements, contacts, the constraint groups; see
+// solve/jacobian_pattern.cpp) in time linear in its size, a system that cannot give it is
+// perturbed once per coordinate; the columns are then coloured so that columns sharing no row
+// are perturbed together (Curtis, Powell & Reid 1974), and S is factorised by sparse LU. For a
+// peridynamic body the colours are about twice the particles within two horizons, so a
+// tangent costs about a hundred force evaluations, not one per coordinate. The tangent is kept
+// from step to step while Newton converges quickly.
 //
 // Properties: second order; unconditionally stable for linear problems; numerical damping of
 // the highest frequencies grows as alpha goes from 0 (none: the trapezoidal rule) to -1/3

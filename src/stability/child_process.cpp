@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 
@@ -39,6 +40,22 @@ std::string current_executable() {
   std::error_code ec;
   const auto path = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::string() : path.string();
+}
+
+std::string find_program(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::string dirs = path ? path : "";
+  size_t begin = 0;
+  for (;;) {
+    const size_t end = dirs.find(':', begin);
+    const std::string dir = dirs.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+    const std::filesystem::path candidate = std::filesystem::path(dir.empty() ? "." : dir) / name;
+    std::error_code error;
+    if (std::filesystem::is_regular_file(candidate, error) && access(candidate.c_str(), X_OK) == 0)
+      return candidate.string();
+    if (end == std::string::npos) return "";
+    begin = end + 1;
+  }
 }
 
 ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& limits) {
@@ -94,6 +111,12 @@ ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& l
     dup2(pipe_fds[1], STDOUT_FILENO);
     dup2(pipe_fds[1], STDERR_FILENO);
     if (limit_memory) setrlimit(RLIMIT_AS, &memory_limit);
+    if (!limits.working_directory.empty() && chdir(limits.working_directory.c_str()) != 0) {
+      const char message[] = "cannot enter the working directory\n";
+      ssize_t ignored = write(STDERR_FILENO, message, sizeof message - 1);
+      (void)ignored;
+      _exit(127);
+    }
     execve(args[0], args.data(), envp.data());
     const char message[] = "exec failed\n";
     ssize_t ignored = write(STDERR_FILENO, message, sizeof message - 1);

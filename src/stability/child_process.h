@@ -12,6 +12,7 @@ struct ChildLimits {
   double timeout_seconds = 120.0;     // the child (and its process group) is killed after this
   double memory_bytes = 4e9;          // address-space limit (RLIMIT_AS); <= 0: none
   std::vector<std::string> environment;  // extra "NAME=value" entries set in the child
+  std::string working_directory;         // the child starts in this folder (empty: the caller's)
 };
 
 struct ChildResult {
@@ -28,5 +29,8 @@ ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& l
 
 // The path of the running program (/proc/self/exe), for commands that re-run themselves.
 std::string current_executable();
+
+// The path of an executable `name` on PATH (as a shell would find it), or empty.
+std::string find_program(const std::string& name);
 
 }  // namespace periflex

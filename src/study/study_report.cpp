@@ -1,5 +1,6 @@
 #include "study/study_report.h"
 
+#include "stability/child_process.h"
 #include "study/energy_trace.h"
 #include <algorithm>
 #include <cmath>
@@ -230,7 +231,19 @@ std::string study_gnuplot_script(const StudyResult& result, const std::string& c
   return out.str();
 }
 
-bool gnuplot_available() { return std::system("command -v gnuplot >/dev/null 2>&1") == 0; }
+bool gnuplot_available() { return !find_program("gnuplot").empty(); }
+
+// Runs gnuplot on a script in the output folder (so its relative paths hold); true when it
+// succeeded. Its messages go to gnuplot.log there.
+bool run_gnuplot(const std::filesystem::path& dir, const std::string& script) {
+  ChildLimits limits;
+  limits.timeout_seconds = 120.0;
+  limits.memory_bytes = 0.0;
+  limits.working_directory = dir.string();
+  const ChildResult result = run_child({find_program("gnuplot"), script}, limits);
+  std::ofstream((dir / "gnuplot.log").string()) << result.output;
+  return result.started && !result.timed_out && result.signal == 0 && result.exit_code == 0;
+}
 
 StudyOutputs write_study_outputs(const StudyResult& result, const std::string& out_dir) {
   namespace fs = std::filesystem;
@@ -257,9 +270,7 @@ StudyOutputs write_study_outputs(const StudyResult& result, const std::string& o
                            "`gnuplot study.gp` in " + dir.string() + ")";
     return outputs;
   }
-  // gnuplot runs in the output folder so the script's relative paths hold
-  const std::string command = "cd '" + dir.string() + "' && gnuplot study.gp 2>gnuplot.log";
-  if (std::system(command.c_str()) != 0 || !fs::exists(png)) {
+  if (!run_gnuplot(dir, "study.gp") || !fs::exists(png)) {
     outputs.plot_message = "no plot made: gnuplot failed (see " + (dir / "gnuplot.log").string() + ")";
     return outputs;
   }
@@ -267,8 +278,7 @@ StudyOutputs write_study_outputs(const StudyResult& result, const std::string& o
   fs::remove(dir / "gnuplot.log", ignored);
   outputs.plot_path = png.string();
   if (energy) {
-    const std::string energy_command = "cd '" + dir.string() + "' && gnuplot energy.gp 2>gnuplot.log";
-    if (std::system(energy_command.c_str()) == 0 && fs::exists(dir / "energy.png")) {
+    if (run_gnuplot(dir, "energy.gp") && fs::exists(dir / "energy.png")) {
       fs::remove(dir / "gnuplot.log", ignored);
       outputs.energy_plot_path = (dir / "energy.png").string();
     }

@@ -70,6 +70,11 @@ TEST(HhtStiffBar, StableAtTenAndHundredTimesTheExplicitCriticalStep) {
     // HHT only removes energy from a linear(ised) elastic system; 1% covers the bonds' geometric
     // nonlinearity and the Newton tolerance
     EXPECT_LE(mechanical_energy(sim), 1.01 * e0) << "factor " << factor;
+    // and keeps the energy of the motion the step resolves: what goes is the fast content the
+    // large step filters. Measured kept: 0.90 of e0 at 10x, 0.61 at 100x (alpha = -0.1; 0.89 /
+    // 0.60 at the strongest damping, alpha = -1/3); a step that lost the resolved motion too
+    // would fall below
+    EXPECT_GE(mechanical_energy(sim), (factor < 50.0 ? 0.85 : 0.5) * e0) << "factor " << factor;
     const Sample s = sim.sample();
     for (double v : s.probe_values) EXPECT_TRUE(std::isfinite(v));
   }

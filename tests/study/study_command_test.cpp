@@ -8,6 +8,8 @@
 #include <fstream>
 #include <string>
 
+#include "stability/child_process.h"
+
 namespace periflex {
 namespace {
 
@@ -43,8 +45,17 @@ TEST(StudyCommand, WritesCsvMarkdownAndPlotOrSaysWhy) {
   EXPECT_EQ(run.exit_code, 0) << run.output;
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "study.csv"));
   EXPECT_TRUE(std::filesystem::exists(dir / "out" / "study.md"));
-  const bool plot = std::filesystem::exists(dir / "out" / "study.png");
-  EXPECT_TRUE(plot || run.output.find("no plot made") != std::string::npos) << run.output;
+  // with gnuplot installed, the plot (a PNG file larger than a header); else a clear word
+  if (!find_program("gnuplot").empty()) {
+    std::ifstream png(dir / "out" / "study.png", std::ios::binary);
+    std::string head(8, '\0');
+    png.read(head.data(), 8);
+    EXPECT_EQ(head, "\x89PNG\r\n\x1a\n") << run.output;
+    std::error_code missing;
+    EXPECT_GT(std::filesystem::file_size(dir / "out" / "study.png", missing), 1000u) << missing.message();
+  } else {
+    EXPECT_NE(run.output.find("no plot made"), std::string::npos) << run.output;
+  }
   // a study file that does not exist is bad input
   EXPECT_EQ(run_program("study '" + (dir / "missing.toml").string() + "'").exit_code, 2);
   std::filesystem::remove_all(dir);

@@ -84,8 +84,16 @@ correction = "projection"
   md_text << md.rdbuf();
   EXPECT_NE(md_text.str().find("| rk4 | projection |"), std::string::npos);
   EXPECT_NE(md_text.str().find("Observed order"), std::string::npos);
-  // a plot, or a clear word that there is none
-  EXPECT_TRUE(!outputs.plot_path.empty() || outputs.plot_message.find("no plot made") != std::string::npos);
+  // with gnuplot installed, a plot (a PNG file); without it, a clear word that there is none
+  if (gnuplot_available()) {
+    ASSERT_FALSE(outputs.plot_path.empty()) << outputs.plot_message;
+    std::ifstream png(outputs.plot_path, std::ios::binary);
+    std::string head(8, '\0');
+    png.read(head.data(), 8);
+    EXPECT_EQ(head, "\x89PNG\r\n\x1a\n") << outputs.plot_path;
+  } else {
+    EXPECT_NE(outputs.plot_message.find("no plot made"), std::string::npos);
+  }
   std::filesystem::remove_all(dir);
 }
 

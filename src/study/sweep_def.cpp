@@ -1,0 +1,161 @@
+#include "study/sweep_def.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "scene/scene_loader.h"
+#include "scene/toml_reader.h"
+
+namespace periflex {
+
+namespace {
+
+// A string or an array of strings.
+std::vector<std::string> string_list(TableReader& reader, std::string_view key) {
+  const toml::node* node = reader.node(key);
+  if (!node) return {};
+  std::vector<std::string> out;
+  if (const auto* s = node->as_string()) return {s->get()};
+  const toml::array* array = node->as_array();
+  if (!array) reader.fail(key, "expected a string or an array of strings, found " + describe_type(*node));
+  for (const toml::node& item : *array) {
+    const auto* s = item.as_string();
+    if (!s) reader.fail(key, "expected strings only, found " + describe_type(item));
+    out.push_back(s->get());
+  }
+  return out;
+}
+
+// A TOML value as the text --set reads back to the same value: a float in the fewest digits
+// that give the same double, and still a float (1.0, not 1).
+std::string value_text(const toml::node& node) {
+  if (const auto* d = node.as_floating_point()) {
+    char text[40];
+    for (int digits = 15; digits <= 17; ++digits) {
+      std::snprintf(text, sizeof text, "%.*g", digits, d->get());
+      if (std::strtod(text, nullptr) == d->get()) break;
+    }
+    std::string out = text;
+    if (out.find_first_of(".eEn") == std::string::npos) out += ".0";
+    return out;
+  }
+  std::ostringstream out;
+  node.visit([&out](const auto& value) { out << value; });
+  return out.str();
+}
+
+}  // namespace
+
+SweepDef parse_sweep(const std::string& toml_text, const std::string& display_path) {
+  ReadContext context;
+  context.file = display_path;
+  toml::table root = parse_toml_located(toml_text, display_path);
+  SweepDef sweep;
+  sweep.path = display_path;
+  const std::filesystem::path file(display_path);
+  TableReader top(context, root, "", "the sweep file");
+
+  // [sweep]
+  const toml::table* table = top.optional_table("sweep");
+  if (!table) top.fail_missing("sweep", "a sweep file needs a [sweep] table");
+  TableReader s(context, *table, "sweep", "[sweep]");
+  sweep.name = s.string("name", file.stem().string());
+  const std::string scene = s.required_string("scene");
+  sweep.scene_path = std::filesystem::path(scene).is_absolute()
+                         ? scene : (file.parent_path() / scene).lexically_normal().string();
+  sweep.overrides = string_list(s, "set");
+  sweep.jobs = static_cast<int>(s.integer("jobs", 2, 1));
+  sweep.timeout_seconds = s.number("timeout", 3600.0, Sign::kPositive);
+  sweep.memory_bytes = s.number("memory_gb", 4.0, Sign::kPositive) * 1e9;
+  sweep.series = string_list(s, "series");
+  s.finish();
+
+  // [[parameter]]: a key and its values
+  const toml::array* parameters = top.optional_array("parameter");
+  if (!parameters || parameters->empty())
+    top.fail_missing("parameter", "a sweep needs at least one [[parameter]] with a key and values");
+  int index = 0;
+  for (const toml::node& item : *parameters) {
+    const std::string path = "parameter." + std::to_string(index++);
+    const toml::table* t = item.as_table();
+    if (!t) context.fail(&item, path, "expected a table ([[parameter]])");
+    TableReader p(context, *t, path, "[[parameter]]");
+    SweepParameter parameter;
+    parameter.key = p.required_string("key");
+    if (parameter.key.empty() || parameter.key.find('=') != std::string::npos)
+      p.fail("key", "expected a dotted scene key such as \"solver.dt\"");
+    const toml::node* values = p.node("values");
+    if (!values) p.fail_missing("values", "the values the key takes, as an array");
+    const toml::array* array = values->as_array();
+    if (!array || array->empty()) p.fail("values", "expected a non-empty array of values");
+    parameter.where = context.locate(values, p.key_path("values"));
+    for (const toml::node& value : *array) parameter.values.push_back(value_text(value));
+    p.finish();
+    for (const SweepParameter& other : sweep.parameters)
+      if (other.key == parameter.key) p.fail("key", "'" + parameter.key + "' is swept twice");
+    sweep.parameters.push_back(parameter);
+  }
+  top.finish();
+  return sweep;
+}
+
+SweepDef load_sweep(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    SourceLocation where;
+    where.file = path;
+    throw InputError(where, "cannot read the sweep file");
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_sweep(text.str(), path);
+}
+
+std::vector<SweepRun> expand_sweep(const SweepDef& sweep) {
+  std::vector<SweepRun> runs;
+  const size_t axes = sweep.parameters.size();
+  std::vector<size_t> at(axes, 0);
+  for (;;) {
+    SweepRun run;
+    char folder[32];
+    std::snprintf(folder, sizeof folder, "run_%04zu", runs.size() + 1);
+    run.folder = folder;
+    run.overrides = sweep.overrides;
+    for (size_t a = 0; a < axes; ++a) {
+      const SweepParameter& p = sweep.parameters[a];
+      run.values.push_back(p.values[at[a]]);
+      run.overrides.push_back(p.key + "=" + p.values[at[a]]);
+    }
+    // the scene must take every value: a refusal is reported at the parameter in the sweep file
+    try {
+      load_scene(sweep.scene_path, run.overrides);
+    } catch (const InputError& error) {
+      // an override's error names it ("override 'key=value'"): the parameter it came from, or
+      // the sweep's own `set`; an error of the scene itself keeps its place in the scene
+      SourceLocation where = error.where();
+      const bool from_override = error.detail().find("override '") != std::string::npos;
+      if (from_override) {
+        where = SourceLocation{sweep.path, 0, 0, "sweep.set"};
+        for (size_t a = 0; a < axes; ++a) {
+          const std::string set = sweep.parameters[a].key + "=" + run.values[a];
+          if (error.detail().find("'" + set + "'") != std::string::npos) where = sweep.parameters[a].where;
+        }
+      }
+      throw InputError(where, "run " + run.folder + ": " + error.detail());
+    }
+    runs.push_back(run);
+    // the next combination, the last axis fastest
+    size_t a = axes;
+    while (a > 0) {
+      --a;
+      if (++at[a] < sweep.parameters[a].values.size()) break;
+      at[a] = 0;
+      if (a == 0) return runs;
+    }
+  }
+}
+
+}  // namespace periflex

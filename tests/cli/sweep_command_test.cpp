@@ -1,0 +1,135 @@
+// `periflex sweep` as typed: a grid over two scene keys run locally two at a time and gathered
+// into sweep.csv; the job list for GNU parallel (a line run through the shell as parallel
+// would) with its Slurm array script and --collect; bad sweep files refused at their line.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run_program.h"
+
+namespace periflex::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A sweep of the pendulum over solver.dt and the bob's mass, 0.05 s each.
+fs::path write_sweep(const fs::path& dir, const std::string& parameters) {
+  const fs::path file = dir / "pendulum_sweep.toml";
+  std::ofstream(file) << "[sweep]\n"
+                      << "scene = \"" << scene("pendulum.toml") << "\"\n"
+                      << "set = [\"solver.end_time=0.05\"]\n"
+                      << "jobs = 2\n"
+                      << "timeout = 60\n"
+                      << "series = [\"probe.bob.x\"]\n"
+                      << parameters;
+  return file;
+}
+
+const char* kGrid =
+    "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3, 7e-4]\n"
+    "[[parameter]]\nkey = \"body.bob.mass\"\nvalues = [1.0, 2.5]\n";
+
+std::vector<std::string> lines_of(const fs::path& file) {
+  std::ifstream in(file);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+TEST(SweepCommand, RunsEveryCombinationAndGathersThemIntoOneCsv) {
+  const fs::path dir = fresh_directory("sweep_local");
+  const fs::path file = write_sweep(dir, kGrid);
+  const ProgramResult run = run_periflex("sweep " + file.string() + " --out " + (dir / "out").string() + " --quiet");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  const std::vector<std::string> csv = lines_of(dir / "out" / "sweep.csv");
+  ASSERT_EQ(csv.size(), 5u) << run.output;
+  EXPECT_EQ(csv[0].rfind("run,solver.dt,body.bob.mass,status,exit_code,", 0), 0u) << csv[0];
+  EXPECT_NE(csv[0].find(",probe.bob.x"), std::string::npos);
+  // the last parameter varies fastest; each run ran with its own values and finished
+  const std::vector<std::string> expected = {"run_0001,0.001,1.0,ok,0,", "run_0002,0.001,2.5,ok,0,",
+                                             "run_0003,0.0007,1.0,ok,0,", "run_0004,0.0007,2.5,ok,0,"};
+  for (size_t k = 0; k < expected.size(); ++k) {
+    EXPECT_EQ(csv[k + 1].rfind(expected[k], 0), 0u) << csv[k + 1];
+    const std::string summary = read_text(dir / "out" / ("run_000" + std::to_string(k + 1)) / "summary.json");
+    EXPECT_NE(summary.find(k < 2 ? "\"dt\": 0.001" : "\"dt\": 0.0007"), std::string::npos) << summary;
+    // the probe's last x is a number: the series column reached the table
+    const std::string last = csv[k + 1].substr(csv[k + 1].rfind(',') + 1);
+    EXPECT_FALSE(last.empty());
+    EXPECT_NO_THROW((void)std::stod(last));
+  }
+  // the mass does not change a pendulum's motion, the step does (a little)
+  auto x_of = [&](int row) { return std::stod(csv[row].substr(csv[row].rfind(',') + 1)); };
+  EXPECT_NEAR(x_of(1), x_of(2), 1e-12);
+  EXPECT_NE(x_of(1), x_of(3));
+  // the plot: a PNG when gnuplot is installed, else a message saying how to make it
+  if (std::system("command -v gnuplot >/dev/null 2>&1") == 0) {
+    const std::string png = read_text(dir / "out" / "sweep.png");
+    ASSERT_GT(png.size(), 1000u) << run.output;
+    EXPECT_EQ(png.substr(1, 3), "PNG");
+  } else {
+    EXPECT_NE(run.output.find("gnuplot was not found"), std::string::npos) << run.output;
+  }
+}
+
+TEST(SweepCommand, JobsFileRunsUnderTheShellAndCollectGathersWhatRan) {
+  const fs::path dir = fresh_directory("sweep_jobs");
+  const fs::path file = write_sweep(dir, kGrid);
+  const fs::path out = dir / "out", jobs = dir / "jobs.txt";
+  const ProgramResult written = run_periflex("sweep " + file.string() + " --out " + out.string() + " --jobs-file " + jobs.string());
+  ASSERT_EQ(written.exit_code, 0) << written.output;
+  const std::vector<std::string> lines = lines_of(jobs);
+  ASSERT_EQ(lines.size(), 4u);
+  EXPECT_NE(lines[2].find("'--set' 'solver.dt=0.0007' '--set' 'body.bob.mass=1.0'"), std::string::npos) << lines[2];
+  EXPECT_FALSE(fs::exists(out / "run_0001")) << "a job list runs nothing";
+  // the Slurm array: one task per line
+  const std::string slurm = read_text(out / "sweep.slurm");
+  EXPECT_NE(slurm.find("#SBATCH --array=1-4"), std::string::npos) << slurm;
+  EXPECT_NE(slurm.find("SLURM_ARRAY_TASK_ID"), std::string::npos);
+  // task 3 as the Slurm script runs it: line 3 of the list through bash
+  const std::string task = "cd " + dir.string() + " && SLURM_ARRAY_TASK_ID=3 bash " + (out / "sweep.slurm").string();
+  ASSERT_EQ(std::system(task.c_str()), 0);
+  EXPECT_TRUE(fs::exists(out / "run_0003" / "summary.json"));
+  const ProgramResult collected = run_periflex("sweep --collect " + out.string());
+  ASSERT_EQ(collected.exit_code, 0) << collected.output;
+  const std::vector<std::string> csv = lines_of(out / "sweep.csv");
+  ASSERT_EQ(csv.size(), 5u);
+  EXPECT_EQ(csv[1].rfind("run_0001,0.001,1.0,missing,", 0), 0u) << csv[1];
+  EXPECT_EQ(csv[3].rfind("run_0003,0.0007,1.0,ok,0,", 0), 0u) << csv[3];
+}
+
+struct BadSweep {
+  const char* name;
+  std::string parameters;
+  std::string where;  // file:line:column the message must name
+  std::string words;  // and what it must say
+};
+
+TEST(SweepCommand, BadSweepFilesExitTwoNamingFileLineAndColumn) {
+  const std::vector<BadSweep> cases = {
+      {"UnknownSceneKey", "[[parameter]]\nkey = \"body.bob.colour\"\nvalues = [1, 2]\n", ":9:10", "unknown key 'colour'"},
+      {"ValuesNotAnArray", "[[parameter]]\nkey = \"solver.dt\"\nvalues = 1e-3\n", ":9:10", "array"},
+      {"ValueTheSceneRefuses", "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3, -1.0]\n", ":9:10", "solver.dt"},
+      {"NoParameters", "", ":1:1", "[[parameter]]"},
+  };
+  for (const BadSweep& c : cases) {
+    const fs::path dir = fresh_directory(std::string("sweep_bad_") + c.name);
+    const fs::path file = write_sweep(dir, c.parameters);
+    const ProgramResult r = run_periflex("sweep " + file.string() + " --out " + (dir / "out").string());
+    EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(file.string() + c.where), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_NE(r.output.find(c.words), std::string::npos) << c.name << ": " << r.output;
+    EXPECT_FALSE(fs::exists(dir / "out" / "run_0001")) << c.name;
+  }
+  // --collect of a folder that is no sweep
+  const ProgramResult r = run_periflex("sweep --collect " + fresh_directory("sweep_bad_collect").string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("sweep.json"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace periflex::testing

@@ -1,0 +1,198 @@
+// The structure of d qdd / d(q, qd) taken from the model (solve/jacobian_pattern.cpp) against
+// the one perturbation finds, and what it buys the HHT integrator: a first step whose force
+// evaluations do not grow with the particles, a set-up linear in them, and the same results as
+// with the pattern found by perturbing every coordinate.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/cpu_time.h"
+#include "core/sparsity_pattern.h"
+#include "scene/scene_loader.h"
+#include "solve/dynamics.h"
+#include "solve/integrator_hht.h"
+#include "solve/system_model.h"
+
+namespace periflex {
+namespace {
+
+const std::string kScenes = std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/";
+
+// A shipped scene's model and its equations of motion at a consistent start.
+struct Model {
+  std::unique_ptr<SystemModel> model;
+  std::unique_ptr<Dynamics> dynamics;
+  OdeState state;
+};
+
+Model build(const std::string& scene_file, const std::vector<std::string>& overrides) {
+  const SceneDef scene = load_scene(kScenes + scene_file, overrides);
+  Model m;
+  m.model = build_system_model(scene);
+  m.dynamics = std::make_unique<Dynamics>(*m.model);
+  m.dynamics->set_correction(scene.solver.correction);
+  m.dynamics->analyse(0.0);
+  m.state.q = m.model->q0;
+  m.state.qd = m.model->qd0;
+  m.dynamics->project_positions(0.0, m.state.q, 1e-12, 20);
+  m.dynamics->project_velocities(0.0, m.state.q, m.state.qd);
+  return m;
+}
+
+// The equations of motion as a system that cannot give its pattern: the integrator then
+// perturbs every coordinate (what it did for every system before the model gave the pattern).
+// Counts the evaluations either way.
+class Counted final : public OdeSystem {
+ public:
+  Counted(Dynamics& inner, bool pattern) : inner_(inner), pattern_(pattern) {}
+  void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd,
+                  Eigen::Vector3d& power) override {
+    ++evaluations;
+    inner_.derivative(t, q, qd, qdd, power);
+  }
+  bool jacobian_pattern(double t, const Eigen::VectorXd& q, SparsityPattern& pattern) override {
+    return pattern_ && inner_.jacobian_pattern(t, q, pattern);
+  }
+  long evaluations = 0;
+
+ private:
+  Dynamics& inner_;
+  bool pattern_;
+};
+
+// The pattern perturbation finds at the state: rows whose acceleration changes when one
+// coordinate and its rate move, diagonal included. A change counts above round-off (1e-12 of
+// the largest acceleration): the constraint solve passes a change of the forces on a gripped
+// particle to the grips' accelerations in the last bit, though the drivers alone set them.
+SparsityPattern perturbed_pattern(Dynamics& dynamics, const OdeState& s) {
+  const int n = static_cast<int>(s.q.size());
+  Eigen::VectorXd f0, f, q, qd;
+  Eigen::Vector3d power;
+  dynamics.derivative(0.0, s.q, s.qd, f0, power);
+  SparsityPattern pattern;
+  pattern.reset(n);
+  const double scale = std::max(s.q.lpNorm<Eigen::Infinity>(), 1e-6);
+  const double noise = 1e-12 * std::max(f0.lpNorm<Eigen::Infinity>(), 1.0);
+  for (int j = 0; j < n; ++j) {
+    q = s.q;
+    qd = s.qd;
+    const double eps = 1.5e-8 * std::max(std::abs(s.q[j]), scale);
+    q[j] += eps;
+    qd[j] += eps;
+    dynamics.derivative(0.0, q, qd, f, power);
+    for (int i = 0; i < n; ++i)
+      if (std::abs(f[i] - f0[i]) > noise) pattern.add(i, j);
+  }
+  pattern.finish();
+  return pattern;
+}
+
+// Entries of `found` that `model` lacks.
+long missing_entries(const SparsityPattern& model, const SparsityPattern& found) {
+  long missing = 0;
+  for (int j = 0; j < found.size(); ++j) {
+    const auto first = model.rows().begin() + model.start()[j], last = model.rows().begin() + model.start()[j + 1];
+    for (int k = found.start()[j]; k < found.start()[j + 1]; ++k)
+      if (!std::binary_search(first, last, found.rows()[k])) ++missing;
+  }
+  return missing;
+}
+
+// Scenes of the three kinds of constrained groups: grips turned by drivers (determined by the
+// constraints alone), a flexible rod in a mechanism with a degree of freedom (the forces enter
+// the constraint solve), and state-based plates (couplings two bonds deep).
+struct PatternCase {
+  const char* name;
+  const char* scene;
+  std::vector<std::string> overrides;
+};
+
+class ModelPattern : public ::testing::TestWithParam<PatternCase> {};
+
+TEST_P(ModelPattern, HoldsEveryEntryPerturbationFindsWithNoMoreColours) {
+  Model m = build(GetParam().scene, GetParam().overrides);
+  SparsityPattern model;
+  ASSERT_TRUE(m.dynamics->jacobian_pattern(0.0, m.state.q, model));
+  const SparsityPattern found = perturbed_pattern(*m.dynamics, m.state);
+  EXPECT_EQ(missing_entries(model, found), 0) << "of " << found.nonzeros();
+  // a superset that is not much larger: the columns need about as many colours (evaluations)
+  const size_t model_colours = colour_columns(model).size(), found_colours = colour_columns(found).size();
+  EXPECT_LE(model_colours, found_colours + found_colours / 10) << model.nonzeros() << " against " << found.nonzeros();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, ModelPattern,
+    ::testing::Values(PatternCase{"DrivenGrips", "notched_plate.toml", {"flex_body.plate.grid_spacing=2e-3"}},
+                      PatternCase{"FlexibleRodInAMechanism", "flexible_slider_crank.toml", {}},
+                      PatternCase{"StateBasedPlates", "notched_plate_models.toml", {}}),
+    [](const ::testing::TestParamInfo<PatternCase>& param) { return std::string(param.param.name); });
+
+// Force evaluations of the first HHT step of the notched plate at spacing dx.
+long first_step_evaluations(double dx, bool pattern, int* coordinates) {
+  Model m = build("notched_plate.toml", {"flex_body.plate.grid_spacing=" + std::to_string(dx)});
+  Counted system(*m.dynamics, pattern);
+  auto hht = make_hht(kDefaultHhtAlpha);
+  hht->step(system, 0.0, 4e-6, m.state);
+  *coordinates = static_cast<int>(m.state.q.size());
+  return system.evaluations;
+}
+
+TEST(JacobianPattern, FirstHhtStepEvaluationsDoNotGrowWithTheParticles) {
+  // twice the particles: the same number of evaluations (colours, Newton iterations), each
+  // linear in the particles, so the step's set-up is linear too; one evaluation per coordinate
+  // to find the pattern would double them
+  int n1 = 0, n2 = 0;
+  const long e1 = first_step_evaluations(2e-3, true, &n1);
+  const long e2 = first_step_evaluations(2e-3 / std::sqrt(2.0), true, &n2);
+  ASSERT_GT(n2, 19 * n1 / 10);
+  EXPECT_LT(e1, n1 / 4);
+  EXPECT_LT(e2, e1 + e1 / 4) << e1 << " evaluations at " << n1 << " coordinates";
+}
+
+TEST(JacobianPattern, SetUpTimeIsLinearInTheParticles) {
+  // pattern and colouring of the notched plate at 4000 and 8000 particles, best of five (a
+  // loaded machine only adds time): quadratic growth would take four times as long
+  auto set_up = [](double dx) {
+    Model m = build("notched_plate.toml", {"flex_body.plate.grid_spacing=" + std::to_string(dx)});
+    double best = std::numeric_limits<double>::infinity();
+    SparsityPattern pattern;
+    for (int k = 0; k < 5; ++k) {
+      const double start = thread_cpu_seconds();
+      m.dynamics->jacobian_pattern(0.0, m.state.q, pattern);
+      const auto colours = colour_columns(pattern);
+      best = std::min(best, thread_cpu_seconds() - start);
+      EXPECT_GT(colours.size(), 0u);
+    }
+    return best;
+  };
+  const double small = set_up(1e-3), large = set_up(1e-3 / std::sqrt(2.0));
+  EXPECT_LT(large, 3.0 * small) << small << " s against " << large << " s";
+}
+
+TEST(JacobianPattern, HhtStepsEqualThoseWithThePerturbedPattern) {
+  // three steps of the notched plate with either pattern: the colours group the columns
+  // differently, so the finite differences, and through them the Newton iterates, differ in
+  // the last bits only
+  Model a = build("notched_plate.toml", {"flex_body.plate.grid_spacing=2e-3"});
+  Model b = build("notched_plate.toml", {"flex_body.plate.grid_spacing=2e-3"});
+  Counted with_model(*a.dynamics, true), perturbed(*b.dynamics, false);
+  auto hht_a = make_hht(kDefaultHhtAlpha), hht_b = make_hht(kDefaultHhtAlpha);
+  const double h = 4e-6;
+  for (int k = 0; k < 3; ++k) {
+    hht_a->step(with_model, k * h, h, a.state);
+    hht_b->step(perturbed, k * h, h, b.state);
+  }
+  // positions against the plate's size, velocities against the fastest particle
+  const double size = a.state.q.lpNorm<Eigen::Infinity>(), speed = a.state.qd.lpNorm<Eigen::Infinity>();
+  EXPECT_LT((a.state.q - b.state.q).lpNorm<Eigen::Infinity>(), 1e-13 * size);
+  EXPECT_LT((a.state.qd - b.state.qd).lpNorm<Eigen::Infinity>(), 1e-13 * speed);
+  EXPECT_LT(with_model.evaluations, perturbed.evaluations / 4);
+}
+
+}  // namespace
+}  // namespace periflex

@@ -15,7 +15,11 @@ namespace {
 
 class SimulationModel final : public SteppedModel {
  public:
-  explicit SimulationModel(const SceneDef& scene) : sim_(scene) { sim_.initialize(); }
+  // the state after initialisation is kept: a reset restores it instead of building again
+  explicit SimulationModel(const SceneDef& scene) : sim_(scene) {
+    sim_.initialize();
+    sim_.save_state(start_);
+  }
   void step() override { sim_.step(); }
   double time() const override { return sim_.time(); }
   long step_count() const override { return sim_.step_count(); }
@@ -27,9 +31,15 @@ class SimulationModel final : public SteppedModel {
   double set_mouse_spring(const std::optional<MouseSpring>& spring) override {
     return sim_.set_mouse_spring(spring);
   }
+  bool reset_to_start() override {
+    sim_.set_mouse_spring(std::nullopt);
+    sim_.restore_state(start_);
+    return true;
+  }
 
  private:
   Simulation sim_;
+  SimState start_;
 };
 
 }  // namespace

@@ -1,0 +1,22 @@
+// A SimState as bytes and back, for checkpoint files (output/checkpoint_file.h). Little-endian
+// fixed-width fields in the order of docs/state.md; the long arrays of doubles (coordinates,
+// velocities, caches) are stored byte-planed (every value's first byte, then every second byte,
+// ...), which puts the slowly varying sign, exponent and leading mantissa bytes of neighbouring
+// particles side by side where deflate finds them.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "solve/sim_state.h"
+
+namespace periflex {
+
+// The bytes of `state`.
+std::vector<uint8_t> encode_state(const SimState& state);
+
+// The state in `bytes`. Throws std::runtime_error saying what is malformed (a size that runs
+// past the end, bytes left over) for bytes encode_state did not write.
+SimState decode_state(const uint8_t* bytes, size_t size);
+
+}  // namespace periflex

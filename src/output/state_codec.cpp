@@ -12,6 +12,18 @@ namespace {
 
 static_assert(std::endian::native == std::endian::little, "checkpoint files are written little-endian");
 
+// Doubles are coded against the one this many places before: x with x, y with y.
+constexpr size_t kStride = 2;
+
+uint64_t bits_of(double v) {
+  uint64_t b;
+  std::memcpy(&b, &v, 8);
+  return b;
+}
+// 0, -1, 1, -2, ... -> 0, 1, 2, 3, ...: small magnitudes of either sign get zero high bytes
+uint64_t zigzag(uint64_t v) { return (v << 1) ^ static_cast<uint64_t>(static_cast<int64_t>(v) >> 63); }
+uint64_t unzigzag(uint64_t z) { return (z >> 1) ^ (~(z & 1) + 1); }
+
 // Appends fields; arrays carry their length first.
 struct Writer {
   std::vector<uint8_t> out;
@@ -28,15 +40,18 @@ struct Writer {
   }
   template <typename T>
   void put_vector(const std::vector<T>& v) { put_array(v.data(), v.size()); }
-  // doubles byte-planed: plane b holds byte b of every value
+  // doubles as the difference of their bit patterns (as integers) from the value two before
+  // (the same coordinate of the previous particle), zigzag-coded so small differences of either
+  // sign have zero high bytes, then byte-planed: plane b holds byte b of every value. A smooth
+  // field or an evenly spaced grid then gives runs of equal bytes in the high planes.
   void put_planed(const double* data, size_t count) {
     put<uint64_t>(count);
     const size_t at = out.size();
     out.resize(at + 8 * count);
-    const auto* p = reinterpret_cast<const uint8_t*>(data);
-    for (size_t b = 0; b < 8; ++b) {
-      uint8_t* plane = out.data() + at + b * count;
-      for (size_t i = 0; i < count; ++i) plane[i] = p[8 * i + b];
+    uint8_t* planes = out.data() + at;
+    for (size_t i = 0; i < count; ++i) {
+      const uint64_t coded = zigzag(bits_of(data[i]) - (i >= kStride ? bits_of(data[i - kStride]) : 0));
+      for (size_t b = 0; b < 8; ++b) planes[b * count + i] = static_cast<uint8_t>(coded >> (8 * b));
     }
   }
   void put_vector(const Eigen::VectorXd& v) { put_planed(v.data(), static_cast<size_t>(v.size())); }
@@ -75,10 +90,12 @@ struct Reader {
   void get_vector(Eigen::VectorXd& v, const char* what) {
     const size_t n = count(8, what);
     v.resize(static_cast<Eigen::Index>(n));
-    auto* p = reinterpret_cast<uint8_t*>(v.data());
-    for (size_t b = 0; b < 8; ++b) {
-      const uint8_t* plane = at + b * n;
-      for (size_t i = 0; i < n; ++i) p[8 * i + b] = plane[i];
+    double* data = v.data();
+    for (size_t i = 0; i < n; ++i) {
+      uint64_t coded = 0;
+      for (size_t b = 0; b < 8; ++b) coded |= static_cast<uint64_t>(at[b * n + i]) << (8 * b);
+      const uint64_t bits = unzigzag(coded) + (i >= kStride ? bits_of(data[i - kStride]) : 0);
+      std::memcpy(data + i, &bits, 8);
     }
     at += 8 * n;
   }

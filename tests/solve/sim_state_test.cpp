@@ -110,7 +110,7 @@ TEST(SimState, GlassPlateRepeatsBitForBitOnOneAndTwoThreads) {
     const SceneDef scene = load_scene(shipped("glass_branching.toml"),
                                       {"flex_body.plate.grid_spacing=5e-4", "flex_body.plate.horizon_ratio=3",
                                        "solver.dt=5e-8", "solver.threads=" + std::to_string(threads)});
-    const Continuation c = continue_twice(scene, 150, 30);
+    const Continuation c = continue_twice(scene, 150, 20);
     EXPECT_GT(c.saved.broken_bonds, 0);
     EXPECT_GT(c.first.broken_bonds, c.saved.broken_bonds);
     expect_repeats(c);

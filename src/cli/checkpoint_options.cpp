@@ -32,6 +32,12 @@ std::string checkpoint_file_name(long index, double time) {
   return name;
 }
 
+std::string interrupted_file_name(double time) {
+  char name[96];
+  std::snprintf(name, sizeof name, "checkpoint_interrupted_t%.9g.pfstate", time);
+  return name;
+}
+
 SimState load_restart(const RunOptions& o, uint64_t scene_hash, CheckpointHeader& header) {
   const std::string& path = o.restart_path;
   auto refuse = [&](const std::string& why) -> InputError {

@@ -19,6 +19,9 @@ uint64_t run_scene_hash(const RunOptions& options);
 // "checkpoint_000012_t0.0012.pfstate": the k-th checkpoint, at time t = k T.
 std::string checkpoint_file_name(long index, double time);
 
+// "checkpoint_interrupted_t0.00123.pfstate": the state an interrupted run reached.
+std::string interrupted_file_name(double time);
+
 // The state in options.restart_path with its header. Throws InputError at --restart naming the
 // file and why it cannot be continued from: unreadable, not a checkpoint, another format or
 // program version, another scene (or other overrides), truncated or damaged.

@@ -174,7 +174,7 @@ int run_command(const RunOptions& requested) {
     last_row_time = sim.time();
   };
   SimState saved;  // kept between checkpoints: no allocation per file
-  auto write_checkpoint_now = [&](long index) {
+  auto write_checkpoint_now = [&](const std::string& name) {
     CheckpointHeader header;
     header.program_version = PERIFLEX_VERSION;
     header.scene_hash = scene_hash;
@@ -182,8 +182,10 @@ int run_command(const RunOptions& requested) {
     header.steps = sim.step_count();
     header.checkpoint_every = options.checkpoint_every;
     sim.save_state(saved);
-    write_checkpoint(options.checkpoint_dir + "/" + checkpoint_file_name(index, sim.time()), header, saved);
+    const std::string path = options.checkpoint_dir + "/" + name;
+    write_checkpoint(path, header, saved);
     ++checkpoints_written;
+    return path;
   };
   auto emit_due_outputs = [&]() {
     const double t = sim.time();
@@ -205,7 +207,7 @@ int run_command(const RunOptions& requested) {
     }
     if (vtk_due) outputs.vtk->write(snapshot);
     if (checkpoints.due(t, dt)) {
-      if (checkpointing) write_checkpoint_now(checkpoints.next_index);
+      if (checkpointing) write_checkpoint_now(checkpoint_file_name(checkpoints.next_index, t));
       checkpoints.advance_past(t, dt);
     }
   };
@@ -250,9 +252,12 @@ int run_command(const RunOptions& requested) {
     emit_due_outputs();
     while (!sim.reached(end_time)) {
       if (const int signal_number = pending_interrupt()) {
+        // a checkpointing run keeps the state it reached too: a long run resumes from there
+        const std::string kept =
+            checkpointing ? "; the state is kept in " + write_checkpoint_now(interrupted_file_name(sim.time())) : "";
         fail("interrupted", interrupt_exit_code(signal_number),
              std::string("interrupted by ") + (signal_number == SIGINT ? "SIGINT" : "SIGTERM") + " at t = " +
-                 format_number(sim.time()) + " s");
+                 format_number(sim.time()) + " s" + kept);
         break;
       }
       // the next instant something is due: the end, a row, a frame or the screenshot

@@ -3,7 +3,7 @@
 // rigid mechanism, the notched plate while it cracks, the glass plate at one and two threads,
 // with steps that do not divide T); files of another scene, version or format, truncated or
 // damaged ones are refused with exit 2 naming the file and the reason; an interrupted run leaves
-// only whole checkpoints.
+// only whole checkpoints, one of them the state it reached, from which it resumes.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -189,23 +189,47 @@ TEST(Checkpoint, BadFlagValuesExitTwoNamingTheFlag) {
   }
 }
 
-TEST(Checkpoint, InterruptedRunLeavesOnlyWholeCheckpoints) {
+TEST(Checkpoint, InterruptedRunLeavesWholeCheckpointsAndResumesFromWhereItStopped) {
   const fs::path dir = fresh_directory("checkpoint_interrupt");
-  // checkpoints every few steps of a plate run, stopped with Ctrl-C while it writes them
-  testing::Child child({"run", scene("notched_plate.toml"), "--quiet", "--out", (dir / "run").string(),
-                        "--checkpoint-every", "4.1e-6"});
+  const std::vector<std::string> plate = {"run", scene("notched_plate.toml"), "--quiet", "--until", "1e-3",
+                                          "--checkpoint-every", "4.1e-6"};
+  // checkpoints every ten steps, stopped with Ctrl-C while it writes them
+  std::vector<std::string> args = plate;
+  args.insert(args.end(), {"--out", (dir / "stopped").string()});
+  testing::Child child(args);
   ASSERT_TRUE(child.started());
-  const fs::path folder = dir / "run" / "checkpoints";
+  const fs::path folder = dir / "stopped" / "checkpoints";
   child.wait_until([&] { return fs::exists(folder) && checkpoints_in(folder).size() >= 20; }, 60);
   child.send(SIGINT);
   const auto result = child.finish(60);
   EXPECT_EQ(result.exit_code, 130) << result.output;
   const auto files = checkpoints_in(folder);
   EXPECT_GE(files.size(), 20u);
+  fs::path interrupted;
   for (const auto& file : files) {
     CheckpointHeader header;
     EXPECT_NO_THROW(read_checkpoint(file.string(), header)) << file;
+    if (file.filename().string().find("interrupted") != std::string::npos) interrupted = file;
   }
+  ASSERT_FALSE(interrupted.empty()) << "no checkpoint of the state the interrupted run reached";
+  EXPECT_NE(result.output.find(interrupted.filename().string()), std::string::npos) << result.output;
+
+  // resumed from there, it writes the rows of a run never stopped
+  args = plate;
+  args.insert(args.end(), {"--out", (dir / "whole").string()});
+  ASSERT_EQ(run_child(args, 120).exit_code, 0);
+  args = plate;
+  args.insert(args.end(), {"--out", (dir / "resumed").string(), "--restart", interrupted.string()});
+  const auto resumed = run_child(args, 120);
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+  const auto whole = lines_of(dir / "whole" / "series.csv");
+  const auto rows = lines_of(dir / "resumed" / "series.csv");
+  ASSERT_GE(rows.size(), 2u);
+  const double from = row_time(rows[1]);
+  std::vector<std::string> tail;
+  for (size_t k = 1; k < whole.size(); ++k)
+    if (row_time(whole[k]) >= from) tail.push_back(whole[k]);
+  EXPECT_EQ(std::vector<std::string>(rows.begin() + 1, rows.end()), tail);
 }
 
 }  // namespace

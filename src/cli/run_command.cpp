@@ -242,6 +242,8 @@ int run_command(const RunOptions& requested) {
         throw InputError(flag_location("--restart"), "cannot continue from '" + options.restart_path + "': " + e.what());
       }
       restart.reset();
+      summary.first_step = sim.step_count();
+      summary.restarted_from = options.restart_path;
       rows.start_at(sim.time(), dt);
       frame_times.start_at(sim.time(), dt);
       checkpoints.advance_past(sim.time(), dt);

@@ -16,6 +16,7 @@
 
 #include "child_run.h"
 #include "output/checkpoint_file.h"
+#include "run_output_files.h"
 #include "run_program.h"
 
 namespace periflex {
@@ -102,8 +103,16 @@ TEST(Checkpoint, CrackingPlateContinuesBitForBit) {
   const auto rows = expect_restart_repeats(
       "plate", {"run", scene("notched_plate.toml"), "--until", "9e-4"}, "3.53e-4", 2);
   ASSERT_FALSE(rows.empty());
-  const auto header = lines_of(fs::current_path() / "cli_test_out_checkpoint_plate" / "again" / "series.csv")[0];
+  const fs::path again = fs::current_path() / "cli_test_out_checkpoint_plate" / "again";
+  const auto header = lines_of(again / "series.csv")[0];
   EXPECT_GT(broken_in(rows, header), 0) << "the crack has not started by the checkpoint";
+  // the summary says where the run came from, and its speed counts the steps it took
+  const auto summary = testing::read_summary(again / "summary.json");
+  EXPECT_NE(summary["restarted_from"].get<std::string>().find("checkpoint_000002"), std::string::npos);
+  const long first = summary["first_step"].get<long>(), steps = summary["steps"].get<long>();
+  EXPECT_GT(first, 1000);
+  EXPECT_NEAR(summary["steps_per_second"].get<double>(), (steps - first) / summary["solver_time"].get<double>(),
+              1e-6 * summary["steps_per_second"].get<double>());
 }
 
 TEST(Checkpoint, GlassPlateContinuesBitForBitOnOneAndTwoThreads) {

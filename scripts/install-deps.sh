@@ -6,12 +6,12 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev gnuplot-nox
+  libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev gnuplot-nox libdeflate-dev
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 if [[ "${1:-}" != "--compute-only" ]]; then
   packages+=(
-    libimgui-dev libglfw3-dev libgl-dev libegl-dev libopengl-dev libdeflate-dev
+    libimgui-dev libglfw3-dev libgl-dev libegl-dev libopengl-dev
     libegl-mesa0 libgl1-mesa-dri xvfb xauth ffmpeg xdotool
   )
 fi

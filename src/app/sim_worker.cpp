@@ -141,7 +141,11 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   // live changes carry over; a model already on those settings is left alone
   if (keep_settings && !same_live_settings(kept, fresh->settings())) fresh->apply(kept);
   model_ = std::move(fresh);
-  mouse_stiffness_ = 0.0;  // a new model holds nothing
+  restarted(scene.name, what);
+}
+
+void SimWorker::restarted(const std::string& scene_name, const char* what) {
+  mouse_stiffness_ = 0.0;  // a new or reset model holds nothing
   rejected_key_.clear();
   rejected_message_.clear();
   ++generation_;
@@ -150,7 +154,7 @@ void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* w
   running_ = false;
   pending_steps_ = 0;
   reanchor();
-  log_.add(std::string(what) + ": scene '" + scene.name + "' at t = 0, paused");
+  log_.add(std::string(what) + ": scene '" + scene_name + "' at t = 0, paused");
   // a recording goes on from the new start
   if (record_interval_ > 0.0) {
     record_start_ = model_->time();
@@ -233,7 +237,11 @@ void SimWorker::apply(SimCommand& c) {
     }
     case Kind::kReset:
       try {
-        rebuild(scene_, true, ("reset" + by).c_str());
+        // the model puts back the state it started in; one that cannot is built again
+        if (model_->reset_to_start())
+          restarted(scene_.name, ("reset" + by).c_str());
+        else
+          rebuild(scene_, true, ("reset" + by).c_str());
       } catch (const std::exception& e) {
         log_.add("reset failed, keeping the current model: " + std::string(e.what()));
       }

@@ -48,6 +48,9 @@ class SteppedModel {
                          const std::vector<float>& /*drawn_y*/) {
     return 0;
   }
+  // Puts back the state the model started in (nothing held by the mouse), keeping the live
+  // settings; false when the model cannot, and the worker then builds it again.
+  virtual bool reset_to_start() { return false; }
 };
 
 // How the worker gets scenes and models: load reads a file (throws InputError), build makes a
@@ -124,6 +127,8 @@ class SimWorker {
   void loop();
   void apply(SimCommand& command);
   void rebuild(const SceneDef& scene, bool keep_settings, const char* what);
+  // What follows a new or reset model: paused at its start, errors cleared, the log told.
+  void restarted(const std::string& scene_name, const char* what);
   void load_from_disk(const std::string& path, const std::vector<std::string>& overrides, const char* what);
   void publish();
   void record_if_due();

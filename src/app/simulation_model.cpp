@@ -16,7 +16,11 @@ namespace {
 
 class SimulationModel final : public SteppedModel {
  public:
-  explicit SimulationModel(const SceneDef& scene) : sim_(scene) { sim_.initialize(); }
+  // the state after initialisation is kept: a reset restores it instead of building again
+  explicit SimulationModel(const SceneDef& scene) : sim_(scene) {
+    sim_.initialize();
+    sim_.save_state(start_);
+  }
   void step() override { sim_.step(); }
   double time() const override { return sim_.time(); }
   long step_count() const override { return sim_.step_count(); }
@@ -44,11 +48,17 @@ class SimulationModel final : public SteppedModel {
                  const std::vector<float>& drawn_y) override {
     return sim_.cut_bonds(from, to, drawn_x, drawn_y);
   }
+  bool reset_to_start() override {
+    sim_.set_mouse_spring(std::nullopt);
+    sim_.restore_state(start_);
+    return true;
+  }
 
  private:
   Simulation sim_;
   mutable std::shared_ptr<const std::vector<std::string>> columns_;
   bool reactions_ = false;
+  SimState start_;
 };
 
 }  // namespace

@@ -85,6 +85,11 @@ int run_main(int argc, char** argv) {
   run_cmd->add_flag("--quiet", run.quiet, "No progress bar; only the final line");
   run_cmd->add_option("--vtk-every", run.vtk_every, "Write VTK snapshots (particles and rigid bodies, for ParaView) every N steps")
       ->check(CLI::NonNegativeNumber);
+  run_cmd->add_option("--checkpoint-every", run.checkpoint_every,
+                      "Write the whole state every T simulated seconds (at exact multiples of T)");
+  run_cmd->add_option("--checkpoint-dir", run.checkpoint_dir, "Folder of the checkpoints (default <out>/checkpoints)");
+  run_cmd->add_option("--restart", run.restart_path,
+                      "Continue from a checkpoint file of this scene (same --set overrides; --until may change)");
   add_render_options(run_cmd, run);
 
   std::string check_scene;

@@ -9,7 +9,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 
+#include "cli/checkpoint_options.h"
 #include "cli/frame_sink.h"
 #include "cli/interrupt.h"
 #include "cli/progress_bar.h"
@@ -19,6 +22,7 @@
 #include "core/error.h"
 #include "core/sim_time.h"
 #include "output/atomic_file.h"
+#include "output/checkpoint_file.h"
 #include "output/series_writer.h"
 #include "output/summary_writer.h"
 #include "output/vtk_series.h"
@@ -49,6 +53,12 @@ struct Schedule {
   double next_time() const { return static_cast<double>(next_index) * interval; }
   bool due(double t, double dt) const {
     return interval > 0 && (every_step(dt) || time_reached(t, next_time(), dt));
+  }
+  // the first k * interval at or after t (a run continued from a state at t)
+  void start_at(double t, double dt) {
+    if (interval <= 0) return;
+    const double k = std::ceil((t - time_tolerance(dt, t)) / interval);
+    next_index = static_cast<long>(std::clamp(k, 0.0, 9.0e18));
   }
   // the first k * interval after t (computed, not counted: no loop over skipped times)
   void advance_past(double t, double dt) {
@@ -122,6 +132,13 @@ int run_command(const RunOptions& requested) {
   Simulation sim(scene);
   const ModelInfo& info = sim.info();
 
+  // a restart: the checkpoint must belong to this scene and program (refused with exit 2)
+  const bool checkpointing = options.checkpoint_every > 0.0;
+  const uint64_t scene_hash = checkpointing || !options.restart_path.empty() ? run_scene_hash(options) : 0;
+  std::optional<SimState> restart;
+  CheckpointHeader restart_header;
+  if (!options.restart_path.empty()) restart = load_restart(options, scene_hash, restart_header);
+
   RunSummary summary;
   summary.scene = scene.name;
   summary.scene_path = scene.path;
@@ -141,6 +158,10 @@ int run_command(const RunOptions& requested) {
   Schedule frame_times;
   if (options.render) frame_times.interval = options.frame_every > 0 ? options.frame_every : end_time / 100.0;
   std::optional<double> snapshot_time = options.snapshot_at;
+  // checkpoints land on k * T like rows; a restart without --checkpoint-every still lands on the
+  // instants of the run that wrote its file (writing none), so its steps are that run's steps
+  Schedule checkpoints{checkpointing ? options.checkpoint_every : restart_header.checkpoint_every};
+  long checkpoints_written = 0;
 
   ProgressBar progress(end_time, !options.quiet && stderr_is_terminal());
   double solver_seconds = 0.0, solver_cpu = 0.0;
@@ -151,6 +172,20 @@ int run_command(const RunOptions& requested) {
                             "lower solver.dt or enable constraint correction"});
     }
     last_row_time = sim.time();
+  };
+  SimState saved;  // kept between checkpoints: no allocation per file
+  auto write_checkpoint_now = [&](const std::string& name) {
+    CheckpointHeader header;
+    header.program_version = PERIFLEX_VERSION;
+    header.scene_hash = scene_hash;
+    header.time = sim.time();
+    header.steps = sim.step_count();
+    header.checkpoint_every = options.checkpoint_every;
+    sim.save_state(saved);
+    const std::string path = options.checkpoint_dir + "/" + name;
+    write_checkpoint(path, header, saved);
+    ++checkpoints_written;
+    return path;
   };
   auto emit_due_outputs = [&]() {
     const double t = sim.time();
@@ -171,6 +206,10 @@ int run_command(const RunOptions& requested) {
       snapshot_time.reset();
     }
     if (vtk_due) outputs.vtk->write(snapshot);
+    if (checkpoints.due(t, dt)) {
+      if (checkpointing) write_checkpoint_now(checkpoint_file_name(checkpoints.next_index, t));
+      checkpoints.advance_past(t, dt);
+    }
   };
 
   int exit_code = kExitOk;
@@ -195,17 +234,36 @@ int run_command(const RunOptions& requested) {
       snapshot.full_precision = true;  // the files keep every digit of the positions
     }
 
-    sim.initialize();
+    if (restart) {
+      // the state of the file, and every schedule from its time on (the row at that time again)
+      try {
+        sim.restore_state(*restart);
+      } catch (const std::invalid_argument& e) {
+        throw InputError(flag_location("--restart"), "cannot continue from '" + options.restart_path + "': " + e.what());
+      }
+      restart.reset();
+      summary.first_step = sim.step_count();
+      summary.restarted_from = options.restart_path;
+      rows.start_at(sim.time(), dt);
+      frame_times.start_at(sim.time(), dt);
+      checkpoints.advance_past(sim.time(), dt);
+    } else {
+      sim.initialize();
+      checkpoints.next_index = 1;  // none at t = 0
+    }
     emit_due_outputs();
     while (!sim.reached(end_time)) {
       if (const int signal_number = pending_interrupt()) {
+        // a checkpointing run keeps the state it reached too: a long run resumes from there
+        const std::string kept =
+            checkpointing ? "; the state is kept in " + write_checkpoint_now(interrupted_file_name(sim.time())) : "";
         fail("interrupted", interrupt_exit_code(signal_number),
              std::string("interrupted by ") + (signal_number == SIGINT ? "SIGINT" : "SIGTERM") + " at t = " +
-                 format_number(sim.time()) + " s");
+                 format_number(sim.time()) + " s" + kept);
         break;
       }
       // the next instant something is due: the end, a row, a frame or the screenshot
-      double target = std::min({end_time, rows.landing(dt), frame_times.landing(dt)});
+      double target = std::min({end_time, rows.landing(dt), frame_times.landing(dt), checkpoints.landing(dt)});
       if (snapshot_time) target = std::min(target, *snapshot_time);
       const auto step_start = Clock::now();
       const double cpu_start = thread_cpu_seconds();
@@ -256,6 +314,7 @@ int run_command(const RunOptions& requested) {
                 frame_stats.where.c_str());
   }
   if (frame_stats.screenshot_written) std::printf("; screenshot in %s", options.screenshot_path.c_str());
+  if (checkpoints_written > 0) std::printf("; %ld checkpoints in %s", checkpoints_written, options.checkpoint_dir.c_str());
   std::printf("; outputs in %s\n", out_dir.c_str());
   std::fflush(stdout);
   return exit_code;

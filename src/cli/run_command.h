@@ -19,6 +19,11 @@ struct RunOptions {
   bool quiet = false;
   long vtk_every = 0;                   // steps between VTK snapshots; 0: none
 
+  // Checkpoints (output/checkpoint_file.h).
+  double checkpoint_every = 0.0;        // simulated seconds between checkpoint files; 0: none
+  std::string checkpoint_dir;           // default <out>/checkpoints
+  std::string restart_path;             // continue from this checkpoint file
+
   // Off-screen rendering.
   bool render = false;
   double frame_every = 0.0;             // simulated seconds between frames; 0: end_time / 100

@@ -79,6 +79,18 @@ void check_run_values(const RunOptions& o) {
   if (o.snapshot_at) check_number("--snapshot-at", *o.snapshot_at, 0.0, kMaxGeometricMagnitude, "a time");
   if (o.threads < 0) fail("--threads", "expected a thread count >= 0, found " + std::to_string(o.threads));
   if (o.vtk_every < 0) fail("--vtk-every", "expected a step count >= 0");
+  if (o.checkpoint_every != 0.0 &&
+      (!std::isfinite(o.checkpoint_every) || o.checkpoint_every <= 0.0 || o.checkpoint_every > kMaxGeometricMagnitude))
+    fail("--checkpoint-every", "expected a positive, finite number of simulated seconds, found " +
+                                   format_number(o.checkpoint_every));
+  if (!o.checkpoint_dir.empty() && o.checkpoint_every == 0.0)
+    fail("--checkpoint-dir", "needs --checkpoint-every T to say when checkpoints are written");
+  if (!o.restart_path.empty()) {
+    std::error_code ec;
+    if (!fs::is_regular_file(o.restart_path, ec))
+      fail("--restart", "'" + o.restart_path + "' is not a checkpoint file (" +
+                            (fs::exists(o.restart_path, ec) ? "not a regular file" : "no such file") + ")");
+  }
   if (!o.colormap.empty()) {
     const auto names = colormap_names();
     if (std::find(names.begin(), names.end(), o.colormap) == names.end())
@@ -147,6 +159,15 @@ SceneDef load_run_scene(RunOptions& options) {
   if (!options.frames_dir.empty()) check_writable_folder("--frames", options.frames_dir);
   if (!options.movie_path.empty()) check_writable_file("--movie", options.movie_path);
   if (!options.screenshot_path.empty()) check_writable_file("--screenshot", options.screenshot_path);
+  if (options.checkpoint_every > 0.0) {
+    // as many files as frames at most
+    const double files = scene.solver.end_time / options.checkpoint_every;
+    if (files > scene.limits.max_frames)
+      fail("--checkpoint-every", "the run would write " + format_number(std::floor(files)) +
+                                     " checkpoints, more than limits.max_frames = " + format_number(scene.limits.max_frames));
+    if (options.checkpoint_dir.empty()) options.checkpoint_dir = options.out_dir + "/checkpoints";
+    check_writable_folder("--checkpoint-dir", options.checkpoint_dir);
+  }
   return scene;
 }
 

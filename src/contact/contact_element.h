@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include "contact/contact_cache.h"
 #include "mbs/force_element.h"
 #include "scene/contact_def.h"
 
@@ -32,6 +33,10 @@ class ContactElement : public ForceElement {
   // Penalty stiffness in use [N/m] (per particle or per pair), and the declaration.
   virtual double stiffness() const = 0;
   virtual const ContactDef& def() const = 0;
+  // What the next evaluation reads from earlier ones (a Verlet list), for saving a state;
+  // nothing for contacts that keep none.
+  virtual void save_cache(ContactCache& out) const { out = ContactCache{}; }
+  virtual void restore_cache(const ContactCache&) {}
 };
 
 // Damping ratio zeta of a linear spring-dashpot whose rebound keeps a fraction e of the

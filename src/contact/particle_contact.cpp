@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "contact/contact_stiffness.h"
 
@@ -38,6 +39,28 @@ ParticleContact::ParticleContact(const ContactDef& def, const std::vector<const 
   skin_ = def.skin_ratio * spacing;
   zeta_ = damping_ratio(def.restitution);
   lightest_ = mass_.empty() ? 0.0 : *std::min_element(mass_.begin(), mass_.end());
+}
+
+void ParticleContact::save_cache(ContactCache& out) const {
+  out.row = candidates_.row;
+  out.col = candidates_.col;
+  out.built_at = built_at_;
+  out.built_broken = built_broken_;
+}
+
+void ParticleContact::restore_cache(const ContactCache& in) {
+  const size_t n = coordinate_.size();
+  const bool empty = in.row.empty() && in.col.empty() && in.built_at.empty();
+  const bool sized = in.row.size() == n + 1 && in.built_at.size() == 2 * n &&
+                     static_cast<int64_t>(in.col.size()) == in.row.back();
+  bool inside = true;
+  for (int32_t c : in.col) inside = inside && c >= 0 && static_cast<size_t>(c) < n;
+  if (!empty && !(sized && inside))
+    throw std::invalid_argument("state of contact '" + def_.name + "' does not match its particles");
+  candidates_.row = in.row;
+  candidates_.col = in.col;
+  built_at_ = in.built_at;
+  built_broken_ = in.built_broken;
 }
 
 bool ParticleContact::bonded(int a, int b) const {

@@ -42,6 +42,10 @@ class ParticleContact final : public ContactElement {
   double stiffness() const override { return stiffness_; }
   const ContactDef& def() const override { return def_; }
 
+  void save_cache(ContactCache& out) const override;
+  // Throws std::invalid_argument for a list of other particles.
+  void restore_cache(const ContactCache& in) override;
+
   // Times the candidate list was built (the first build included), for tests.
   long rebuilds() const { return rebuilds_; }
 

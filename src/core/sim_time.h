@@ -40,6 +40,14 @@ class SimClock {
   void tick() { ++steps_; }
   // A step landed exactly on t.
   void land(double t) { reset(t, dt_); }
+  // The parts of the clock, for saving and restoring it exactly.
+  double origin() const { return origin_; }
+  long steps() const { return steps_; }
+  void restore(double origin, double dt, long steps) {
+    origin_ = origin;
+    dt_ = dt;
+    steps_ = steps;
+  }
 
  private:
   double origin_ = 0.0;

@@ -13,7 +13,7 @@ static nlohmann::json finite_or_null(double v) {
 }
 
 double steps_per_second(const RunSummary& run) {
-  return run.solver_time > 0 ? static_cast<double>(run.steps) / run.solver_time : 0.0;
+  return run.solver_time > 0 ? static_cast<double>(run.steps - run.first_step) / run.solver_time : 0.0;
 }
 
 void write_summary(const std::string& path, const ModelInfo& info, const RunSummary& run) {
@@ -23,6 +23,8 @@ void write_summary(const std::string& path, const ModelInfo& info, const RunSumm
   j["integrator"] = run.integrator;
   j["dt"] = finite_or_null(run.dt);
   j["steps"] = run.steps;
+  j["first_step"] = run.first_step;
+  j["restarted_from"] = run.restarted_from.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.restarted_from);
   j["simulated_time"] = finite_or_null(run.simulated_time);
   j["wall_time"] = finite_or_null(run.wall_time);
   j["solver_time"] = finite_or_null(run.solver_time);

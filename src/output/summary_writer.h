@@ -13,7 +13,9 @@ struct RunSummary {
   std::string scene_path;
   std::string integrator;
   double dt = 0.0;
-  long steps = 0;
+  long steps = 0;                 // step count at the end (counted from t = 0)
+  long first_step = 0;            // step count the run started from (a restart: the checkpoint's)
+  std::string restarted_from;     // the checkpoint file of a restart; empty otherwise
   double simulated_time = 0.0;
   double wall_time = 0.0;         // seconds, solver and output
   double solver_time = 0.0;       // wall seconds in stepping
@@ -26,7 +28,7 @@ struct RunSummary {
   double render_time = 0.0;
 };
 
-// Steps per second of the solver's wall time: the figure the closing line prints too.
+// Steps this run took per second of the solver's wall time: the figure the closing line prints too.
 double steps_per_second(const RunSummary& run);
 
 // Writes summary.json for `info` and `run` to `path` (atomically).

@@ -249,6 +249,7 @@ long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel,
         e -= 0.5 * half_kick * k * s * (dx * dvx + dy * dvy) / len;
       }
       energy += e;
+      bonds.broken_stiffness.emplace_back(b, bonds.stiffness[b]);
       bonds.broken[b] = 1;
       bonds.stiffness[b] = 0.0f;
       ++directed;
@@ -325,6 +326,7 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
       const double s = stretch(bonds, pos, i, b);
       if (s > s0) {
         energy += 0.25 * double(bonds.stiffness[b]) * s * s / bonds.inv_length(b);
+        bonds.broken_stiffness.emplace_back(b, bonds.stiffness[b]);
         bonds.broken[b] = 1;
         bonds.stiffness[b] = 0.0f;
         ++directed;

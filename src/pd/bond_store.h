@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 namespace periflex {
@@ -25,7 +26,10 @@ struct BondStore {
   std::vector<int16_t> neighbor_offset;  // j - i of each bond; empty when some |j - i| > 32767
   std::vector<uint8_t> length_class;   // di^2 + dj^2 of the grid offset from i to j (<= 255)
   std::vector<float> stiffness;        // k = c w(|xi|) beta g V_i V_j [N]: pair force = k s; 0 once broken
-  std::vector<uint8_t> broken;         // 1 once broken (never heals)
+  std::vector<uint8_t> broken;         // 1 once broken (never heals while stepping)
+  // (bond, stiffness before it broke) of every broken stored direction: a restored earlier state
+  // heals its bonds from it (16 bytes per broken direction, nothing before fracture)
+  std::vector<std::pair<int64_t, float>> broken_stiffness;
   double grid_spacing = 1.0;
   std::vector<double> inv_length_table;  // 1 / |xi| per length class (index = di^2 + dj^2)
 
@@ -57,7 +61,8 @@ struct BondStore {
     return row.capacity() * sizeof(int64_t) + neighbor.capacity() * sizeof(int32_t) +
            neighbor_offset.capacity() * sizeof(int16_t) + length_class.capacity() * sizeof(uint8_t) +
            stiffness.capacity() * sizeof(float) +
-           broken.capacity() * sizeof(uint8_t) + inv_length_table.capacity() * sizeof(double);
+           broken.capacity() * sizeof(uint8_t) + inv_length_table.capacity() * sizeof(double) +
+           broken_stiffness.capacity() * sizeof(std::pair<int64_t, float>);
   }
 };
 

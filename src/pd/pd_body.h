@@ -14,6 +14,7 @@
 #include "core/time_function.h"
 #include "mbs/force_element.h"
 #include "pd/bond_store.h"
+#include "pd/flex_state.h"
 #include "scene/scene_def.h"
 
 namespace periflex {
@@ -97,6 +98,12 @@ class PdBody : public ForceElement {
   // booked for it is its strain energy there less the work it would have done over the half-kick.
   void set_step_end(double t_end, double half_kick);
   bool fracture_enabled() const;
+
+  // The broken bonds and what follows from them, for saving a state; a restore heals the bonds
+  // broken since (from BondStore::broken_stiffness) and breaks the ones the state has broken.
+  void save_state(FlexState& out) const;
+  // Throws std::invalid_argument when the state belongs to a body with other bonds.
+  void restore_state(const FlexState& in);
 
   // Damage in [0, 1] per particle.
   void damage(std::vector<float>& out) const;

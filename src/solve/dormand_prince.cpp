@@ -70,6 +70,22 @@ class DormandPrince final : public Integrator {
     h_ = h;
   }
 
+ protected:
+  // the step size carried over, and the last stage (first same as last) with its time
+  void save_steps(IntegratorCache& out) const override {
+    out.scalars = {h_, fsal_valid_ ? 1.0 : 0.0, fsal_time_, kw_[0][0], kw_[0][1], kw_[0][2]};
+    out.vectors = {kqd_[0], kqdd_[0]};
+  }
+  void restore_steps(const IntegratorCache& in) override {
+    if (in.scalars.size() != 6 || in.vectors.size() != 2) return;
+    h_ = in.scalars[0];
+    fsal_valid_ = in.scalars[1] != 0.0;
+    fsal_time_ = in.scalars[2];
+    kw_[0] = Eigen::Vector3d(in.scalars[3], in.scalars[4], in.scalars[5]);
+    kqd_[0] = in.vectors[0];
+    kqdd_[0] = in.vectors[1];
+  }
+
  private:
   // One trial step of size h from (t, s); fills q_new_, qd_new_, work_new_; returns the scaled error.
   double attempt(OdeSystem& system, double t, double h, const OdeState& s) {

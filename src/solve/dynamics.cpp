@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <set>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "coupling/rigid_flexible_joint.h"
@@ -244,6 +245,22 @@ void Dynamics::analyse(double t) {
   }
   rank_changes_ = 0;
   choose_monitored_rows(t, q);
+}
+
+void Dynamics::save_rank(RankState& out) const {
+  out.dropped = dropped_;
+  out.last_dependent = last_dependent_;
+  out.rank_changes = rank_changes_;
+}
+
+void Dynamics::restore_rank(const RankState& in) {
+  for (int r : in.dropped) {
+    if (r < 0 || r >= model_.constraint_rows) throw std::invalid_argument("state: a dropped row outside the model");
+  }
+  if (in.dropped != dropped_) select_rows(in.dropped);
+  // copied into the reserved buffer: no allocation at the next change of rank
+  last_dependent_.assign(in.last_dependent.begin(), in.last_dependent.end());
+  rank_changes_ = in.rank_changes;
 }
 
 void Dynamics::select_rows(const std::vector<int>& dropped) {

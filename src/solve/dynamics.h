@@ -15,6 +15,7 @@
 #include "solve/dense_constraint_solver.h"
 #include "solve/integrator.h"
 #include "solve/kkt_solver.h"
+#include "solve/sim_state.h"
 #include "solve/system_model.h"
 
 namespace periflex {
@@ -75,6 +76,10 @@ class Dynamics final : public OdeSystem {
   const std::vector<int>& dependent_now() const { return dense_ ? dense_acceleration_.dependent() : dropped_; }
   double smallest_pivot() const { return dense_ ? dense_acceleration_.smallest_pivot() : 1.0; }
   long rank_changes() const { return rank_changes_; }
+  // The rows left out now and the rank history, for saving a state; restoring leaves out the
+  // same rows (rebuilding what depends on them only when they differ).
+  void save_rank(RankState& out) const;
+  void restore_rank(const RankState& in);
   // Names of the blocks of the given global rows.
   std::vector<std::string> blocks_of(const std::vector<int>& rows) const;
   static constexpr int kDenseRows = 64;

@@ -76,6 +76,20 @@ class VelocityVerlet final : public Integrator {
   }
   void reset() override { cached_ = false; }
 
+ protected:
+  // the end acceleration and power of the last step, and when they were evaluated
+  void save_steps(IntegratorCache& out) const override {
+    out.scalars = {cached_ ? 1.0 : 0.0, cached_time_, power_[0], power_[1], power_[2]};
+    out.vectors = {qdd_};
+  }
+  void restore_steps(const IntegratorCache& in) override {
+    if (in.scalars.size() != 5 || in.vectors.size() != 1) return;
+    cached_ = in.scalars[0] != 0.0;
+    cached_time_ = in.scalars[1];
+    power_ = Eigen::Vector3d(in.scalars[2], in.scalars[3], in.scalars[4]);
+    qdd_ = in.vectors[0];
+  }
+
  private:
   std::string name_ = "verlet";
   Eigen::VectorXd qdd_;

@@ -13,6 +13,7 @@
 
 #include "core/sparsity_pattern.h"
 #include "scene/scene_def.h"
+#include "solve/sim_state.h"
 
 namespace periflex {
 
@@ -54,11 +55,32 @@ class Integrator {
   virtual void step(OdeSystem& system, double t, double dt, OdeState& s) = 0;
   // Forgets data cached from the previous step (the state was changed from outside).
   virtual void reset() {}
+  // What the next step reads from earlier ones (none for the single-step methods), and its
+  // return: restoring the cache an integrator of the same name saved makes its next step
+  // repeat bit for bit; any other cache resets it.
+  void save_cache(IntegratorCache& out) const {
+    out.name = name();
+    out.scalars.clear();
+    out.vectors.clear();
+    save_steps(out);
+    out.accepted = accepted_;
+    out.rejected = rejected_;
+  }
+  void restore_cache(const IntegratorCache& in) {
+    reset();
+    if (in.name != name()) return;
+    restore_steps(in);
+    accepted_ = in.accepted;
+    rejected_ = in.rejected;
+  }
   // Internal steps taken and rejected so far (adaptive integrators; others count steps).
   long accepted_steps() const { return accepted_; }
   long rejected_steps() const { return rejected_; }
 
  protected:
+  // the integrator's own part of the cache (scalars and vectors in an order of its own)
+  virtual void save_steps(IntegratorCache&) const {}
+  virtual void restore_steps(const IntegratorCache&) {}
   long accepted_ = 0, rejected_ = 0;
 };
 

@@ -68,6 +68,28 @@ class Hht final : public Integrator {
     ++accepted_;
   }
 
+ protected:
+  // The start of the next step: the algorithmic acceleration and force term the last step
+  // ended with. The iteration matrix is not kept: a restored HHT builds a fresh tangent at its
+  // first step, so its Newton iterates (not the converged step, within the Newton tolerance)
+  // differ from the run that kept the old one.
+  void save_steps(IntegratorCache& out) const override {
+    out.scalars = {cached_ ? 1.0 : 0.0, edited_ ? 1.0 : 0.0, cached_time_, power0_[0], power0_[1], power0_[2]};
+    out.vectors = {q_end_, v_end_, a0_, f0_};
+  }
+  void restore_steps(const IntegratorCache& in) override {
+    if (in.scalars.size() != 6 || in.vectors.size() != 4) return;
+    cached_ = in.scalars[0] != 0.0;
+    edited_ = in.scalars[1] != 0.0;
+    cached_time_ = in.scalars[2];
+    power0_ = Eigen::Vector3d(in.scalars[3], in.scalars[4], in.scalars[5]);
+    q_end_ = in.vectors[0];
+    v_end_ = in.vectors[1];
+    a0_ = in.vectors[2];
+    f0_ = in.vectors[3];
+    tangent_valid_ = false;
+  }
+
  private:
   // True when the state differs from where the last step ended by more than a correction would
   // move it (a thousandth of the configuration's size).

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/error.h"
 #include "core/parallel_chunks.h"
@@ -82,14 +83,7 @@ struct Simulation::Impl {
   // passages through singular positions (rank monitoring): the energy balance when the rank
   // first changed or the Jacobian came near losing it, checked when the rank is back and the
   // position left behind, so a jump onto another branch is no silent one
-  struct Passage {
-    bool open = false;
-    long seen_changes = 0;
-    size_t stable_dependent = 0;   // rows dependent outside passages
-    double entry_time = 0.0, entry_balance = 0.0;
-    std::vector<int> rows;         // every row left out during the passage
-    Eigen::VectorXd entry_q;       // positions when it opened
-  } passage;
+  PassageWatch passage;
   Timing timing;
   mutable std::shared_ptr<const SceneGeometry> geometry;
 
@@ -308,7 +302,7 @@ void Simulation::Impl::initialize() {
   energy_scale = std::max(std::abs(kinetic_energy()) + std::abs(elastic_energy()) + weight * model->length_scale,
                           1e-12);
   integrator->reset();
-  passage = Passage{};
+  passage = PassageWatch{};
   passage.rows.reserve(model->constraint_rows);  // filled while passing a singular position
   passage.entry_q = state.q;
   passage.seen_changes = dynamics->rank_changes();
@@ -564,7 +558,8 @@ void Simulation::Impl::check_passage() {
   if (std::abs(jump) > kBranchEnergy * energy_scale) {
     std::string names;
     std::vector<std::string> blocks = dynamics->blocks_of(passage.rows);
-    for (const auto& n : dynamics->nearly_dependent_blocks(passage.entry_time, passage.entry_q, kPassagePivot))
+    const Eigen::VectorXd& entry_q = passage.entry_q.size() == state.q.size() ? passage.entry_q : state.q;
+    for (const auto& n : dynamics->nearly_dependent_blocks(passage.entry_time, entry_q, kPassagePivot))
       if (std::find(blocks.begin(), blocks.end(), n) == blocks.end()) blocks.push_back(n);
     for (const auto& n : blocks) names += (names.empty() ? "'" : ", '") + n + "'";
     throw NumericalError({"singular configuration", steps, time,
@@ -633,6 +628,69 @@ double Simulation::time() const { return impl_->time; }
 long Simulation::step_count() const { return impl_->steps; }
 double Simulation::end_time() const { return impl_->scene.solver.end_time; }
 Simulation::Timing Simulation::timing() const { return impl_->timing; }
+
+void Simulation::save_state(SimState& out) const {
+  const Impl& s = *impl_;
+  out.time = s.time;
+  out.steps = s.steps;
+  out.clock_origin = s.clock.origin();
+  out.clock_dt = s.clock.dt();
+  out.clock_steps = s.clock.steps();
+  out.initialized = s.initialized;
+  out.q = s.state.q;
+  out.qd = s.state.qd;
+  out.work = s.state.work;
+  out.fracture_energy = s.fracture_energy;
+  out.broken_bonds = s.broken_bonds;
+  out.initial_total = s.initial_total;
+  out.initial_gravity = s.initial_gravity;
+  out.energy_scale = s.energy_scale;
+  out.initial_position_correction = s.info.initial_position_correction;
+  out.initial_velocity_correction = s.info.initial_velocity_correction;
+  out.passage = s.passage;
+  s.dynamics->save_rank(out.rank);
+  s.integrator->save_cache(out.integrator);
+  out.flex.resize(s.model->flex_bodies.size());
+  for (size_t f = 0; f < out.flex.size(); ++f) s.model->flex_bodies[f]->save_state(out.flex[f]);
+  out.contacts.resize(s.model->contacts.size());
+  for (size_t c = 0; c < out.contacts.size(); ++c) s.model->contacts[c]->save_cache(out.contacts[c]);
+}
+
+void Simulation::restore_state(const SimState& in) {
+  Impl& s = *impl_;
+  const SystemModel& m = *s.model;
+  // a state of another model is refused before anything changes
+  const auto n = static_cast<Eigen::Index>(m.coordinate_count);
+  if (in.q.size() != n || in.qd.size() != n || in.flex.size() != m.flex_bodies.size() ||
+      in.contacts.size() != m.contacts.size()) {
+    throw std::invalid_argument("the state does not belong to this model (" + std::to_string(in.q.size()) +
+                                " coordinates, " + std::to_string(in.flex.size()) + " flexible bodies; the model has " +
+                                std::to_string(n) + " and " + std::to_string(m.flex_bodies.size()) + ")");
+  }
+  for (size_t f = 0; f < in.flex.size(); ++f) m.flex_bodies[f]->restore_state(in.flex[f]);
+  for (size_t c = 0; c < in.contacts.size(); ++c) m.contacts[c]->restore_cache(in.contacts[c]);
+  s.dynamics->restore_rank(in.rank);
+  s.state.q = in.q;
+  s.state.qd = in.qd;
+  s.state.work = in.work;
+  s.time = in.time;
+  s.steps = in.steps;
+  // the clock as it was; a step size changed since (live settings) counts from the restored time
+  s.clock.restore(in.clock_origin, in.clock_dt, in.clock_steps);
+  if (in.clock_dt != s.live.dt) s.clock.reset(s.time, s.live.dt);
+  s.initialized = in.initialized;
+  s.fracture_energy = in.fracture_energy;
+  s.broken_bonds = in.broken_bonds;
+  s.initial_total = in.initial_total;
+  s.initial_gravity = in.initial_gravity;
+  s.energy_scale = in.energy_scale;
+  s.info.initial_position_correction = in.initial_position_correction;
+  s.info.initial_velocity_correction = in.initial_velocity_correction;
+  s.passage = in.passage;
+  s.saved_current = false;  // the fallback copy is of the state replaced
+  s.passage.rows.reserve(m.constraint_rows);
+  s.integrator->restore_cache(in.integrator);
+}
 
 void Simulation::initialize() { impl_->initialize(); }
 

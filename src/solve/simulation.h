@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "scene/scene_def.h"
+#include "solve/sim_state.h"
 #include "solve/snapshot.h"
 
 namespace periflex {
@@ -104,6 +105,12 @@ class Simulation {
   void fill_snapshot(Snapshot& out) const;
   // The joints' reactions of fill_snapshot, when out.with_reactions is set (Snapshot::Reaction).
   void fill_reactions(Snapshot& out) const;
+
+  // The whole mutable state (solve/sim_state.h): copied out, or put back so that the steps after
+  // a restore repeat the steps after the save bit for bit (same settings, same thread count).
+  // restore_state throws std::invalid_argument for a state of another model.
+  void save_state(SimState& out) const;
+  void restore_state(const SimState& in);
 
   LiveSettings settings() const;
   void apply(const LiveSettings& settings);

@@ -1,0 +1,63 @@
+// Scene identity, file names and the checks of `run --restart`.
+#include "cli/checkpoint_options.h"
+
+#include <cstdio>
+#include <fstream>
+#include <iterator>
+
+#include "cli/scene_setup.h"
+#include "core/error.h"
+
+namespace periflex {
+
+uint64_t run_scene_hash(const RunOptions& o) {
+  std::ifstream in(o.scene_path, std::ios::binary);
+  if (!in) throw InputError({o.scene_path, 0, 0, ""}, "cannot read the scene file");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // each part with a separator no scene text or flag value contains
+  uint64_t h = text_hash(text);
+  for (const std::string& set : o.overrides) h = text_hash("\x1f--set " + set, h);
+  if (o.dt) {
+    char number[40];
+    std::snprintf(number, sizeof number, "%.17g", *o.dt);
+    h = text_hash(std::string("\x1f--dt ") + number, h);
+  }
+  if (o.integrator) h = text_hash("\x1f--integrator " + *o.integrator, h);
+  return h;
+}
+
+std::string checkpoint_file_name(long index, double time) {
+  char name[96];
+  std::snprintf(name, sizeof name, "checkpoint_%06ld_t%.9g.pfstate", index, time);
+  return name;
+}
+
+std::string interrupted_file_name(double time) {
+  char name[96];
+  std::snprintf(name, sizeof name, "checkpoint_interrupted_t%.9g.pfstate", time);
+  return name;
+}
+
+SimState load_restart(const RunOptions& o, uint64_t scene_hash, CheckpointHeader& header) {
+  const std::string& path = o.restart_path;
+  auto refuse = [&](const std::string& why) -> InputError {
+    return InputError(flag_location("--restart"), "cannot continue from '" + path + "': " + why);
+  };
+  SimState state;
+  try {
+    state = read_checkpoint(path, header);
+  } catch (const CheckpointError& e) {
+    throw refuse(e.what());
+  }
+  if (header.program_version != PERIFLEX_VERSION) {
+    throw refuse("written by periflex " + header.program_version + ", this is periflex " + PERIFLEX_VERSION +
+                 " (a state is continued by the version that wrote it)");
+  }
+  if (header.scene_hash != scene_hash) {
+    throw refuse("written for another scene, or for this one with other --set, --dt or --integrator values "
+                 "(give the ones of the run that wrote it)");
+  }
+  return state;
+}
+
+}  // namespace periflex

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <string>
 
 #include "mbs/force_element.h"
 #include "scene/contact_def.h"
@@ -18,6 +19,16 @@ struct ContactTotals {
 
 class ContactElement : public ForceElement {
  public:
+  explicit ContactElement(const ContactDef& def) : def_(def) {}
+
+  const std::string& name() const final { return def_.name; }
+  // The declaration, and the penalty stiffness in use [N/m] (per particle, pair or shape pair).
+  const ContactDef& def() const { return def_; }
+  double stiffness() const { return stiffness_; }
+  // The critical step of the bodies this contact touches without the contact: the bound of the
+  // bonds alone (infinite between rigid bodies).
+  double bond_critical_time_step() const { return bond_step_; }
+
   // g += contact forces at (q, qd); returns the power they dissipate (add_forces and
   // dissipation_power in one pass over the particles, as the stepper needs both).
   virtual double add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
@@ -27,11 +38,11 @@ class ContactElement : public ForceElement {
   // Silling-Askari form sqrt(2 m / K) of the critical step of the particles this contact
   // touches, with the contact stiffness added to their bond stiffness (and its damping).
   virtual double critical_time_step() const = 0;
-  // The same without the contact: the bound of the bonds alone.
-  virtual double bond_critical_time_step() const = 0;
-  // Penalty stiffness in use [N/m] (per particle or per pair), and the declaration.
-  virtual double stiffness() const = 0;
-  virtual const ContactDef& def() const = 0;
+
+ protected:
+  ContactDef def_;
+  double stiffness_ = 0.0;  // set by each model's constructor
+  double bond_step_ = 0.0;  // likewise
 };
 
 // Damping ratio zeta of a linear spring-dashpot whose rebound keeps a fraction e of the

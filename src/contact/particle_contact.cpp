@@ -16,7 +16,7 @@ constexpr double kContactsPerParticle = 4.0;
 }  // namespace
 
 ParticleContact::ParticleContact(const ContactDef& def, const std::vector<const PdBody*>& bodies)
-    : def_(def), bodies_(bodies) {
+    : ContactElement(def), bodies_(bodies) {
   double spacing = 0.0, inverse_stiffness = 0.0;
   bond_step_ = 0.0;
   for (size_t b = 0; b < bodies_.size(); ++b) {

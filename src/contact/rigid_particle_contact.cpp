@@ -17,7 +17,7 @@ constexpr int kChunkParticles = 2048;
 RigidParticleContact::RigidParticleContact(const ContactDef& def, int body, double body_mass,
                                            std::vector<ShapeDef> shapes, const PdBody& flex,
                                            const std::vector<int>& excluded)
-    : def_(def),
+    : ContactElement(def),
       body_(body),
       body_mass_(body_mass),
       shapes_(std::move(shapes)),

@@ -25,7 +25,6 @@ class RigidParticleContact final : public ContactElement {
   RigidParticleContact(const ContactDef& def, int body, double body_mass, std::vector<ShapeDef> shapes,
                        const PdBody& flex, const std::vector<int>& excluded);
 
-  const std::string& name() const override { return def_.name; }
   void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
   double add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
                                 Eigen::VectorXd& g) override;
@@ -34,9 +33,6 @@ class RigidParticleContact final : public ContactElement {
 
   ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   double critical_time_step() const override;
-  double bond_critical_time_step() const override { return bond_step_; }
-  double stiffness() const override { return stiffness_; }
-  const ContactDef& def() const override { return def_; }
 
  private:
   // What one pass over the particles adds up.
@@ -49,7 +45,6 @@ class RigidParticleContact final : public ContactElement {
   // Fixed chunks of particles, partial sums added in chunk order: the same bits on any thread count.
   Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const;
 
-  ContactDef def_;
   int body_;
   double body_mass_;
   std::vector<ShapeDef> shapes_;
@@ -58,8 +53,8 @@ class RigidParticleContact final : public ContactElement {
   int offset_;                    // q index of the first particle's x
   std::vector<double> mass_;      // per particle
   std::vector<char> excluded_;    // per particle
-  double stiffness_, margin_, zeta_;
-  double bond_step_ = 0.0, lightest_ = 0.0;
+  double margin_, zeta_;
+  double lightest_ = 0.0;
 };
 
 }  // namespace periflex

@@ -157,8 +157,8 @@ void Simulation::Impl::build_info() {
   }
   // a contact's stiffness adds to the bonds' on the particles it touches
   for (const auto& contact : m.contacts) {
-    const double crit = contact->critical_time_step();
-    if (crit > 0.0) critical_step = critical_step > 0.0 ? std::min(critical_step, crit) : crit;
+    const double crit = contact->critical_time_step();  // infinite between massless bodies
+    if (crit > 0.0 && std::isfinite(crit)) critical_step = critical_step > 0.0 ? std::min(critical_step, crit) : crit;
   }
   info.coordinates = m.coordinate_count;
   info.constraint_equations = m.constraint_rows;

@@ -10,12 +10,13 @@
 // The crack turns at the tip within a horizon and runs straight after it, so the fit is the
 // direction it leaves in, without the few millimetres by which its start sits off the tip.
 //
-// Tolerance: 62 to 75 degrees. The experiment gives about 70; peridynamic computations report 65
-// to 72 (bond-based at finer grids about 68), phase-field ones 60 to 70. At 1 mm the path is a
-// band of particles three horizons wide whose fitted direction moves by a few degrees with the
-// grid, and the bond-based model fixes Poisson's ratio at 1/4 instead of the steel's 0.3: the
-// band is widened by those few degrees on each side, not more (a crack along the notch line,
-// mode-II shear, would read 0 to 20 degrees; a crack straight up, 90).
+// Tolerance: 60 to 75 degrees. The experiment gives about 70; peridynamic computations report 65
+// to 72 at finer grids. The angle grows as the grid is refined: measured 62.5 degrees at 1 mm
+// (this test, either load), 64.3 (prescribed velocity) and 65.7 (projectile) at the scene's
+// 0.5 mm (PERIFLEX_KW_FULL=1), so the coarse grid reads low by the few degrees that halving dx
+// moves it, and the lower bound sits that far under the published band. A crack along the notch
+// line (mode-II shear) would read 0 to 20 degrees, one straight up 90: the band tells the
+// tensile kink from either.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -86,7 +87,7 @@ TEST(KalthoffWinkler, CrackLeavesTheNotchAtTheExperimentsAngleUnderPrescribedVel
               a.particles);
   RecordProperty("angle_degrees", std::to_string(a.degrees));
   ASSERT_GE(a.particles, 20) << "no crack from the notch tip";
-  EXPECT_GT(a.degrees, 62.0);
+  EXPECT_GT(a.degrees, 60.0);
   EXPECT_LT(a.degrees, 75.0);
 }
 
@@ -96,7 +97,7 @@ TEST(KalthoffWinkler, CrackLeavesTheNotchAtTheExperimentsAngleUnderARigidProject
               a.particles);
   RecordProperty("angle_degrees", std::to_string(a.degrees));
   ASSERT_GE(a.particles, 20) << "no crack from the notch tip";
-  EXPECT_GT(a.degrees, 62.0);
+  EXPECT_GT(a.degrees, 60.0);
   EXPECT_LT(a.degrees, 75.0);
 }
 

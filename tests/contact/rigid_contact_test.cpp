@@ -151,7 +151,7 @@ TEST(RigidContact, BoxStrikingABoxOffCentreKeepsMomentumAndAngularMomentum) {
   // a 100 x 50 mm box at 1 m/s strikes, with its lower right corner, the upper left corner of
   // a free 200 x 100 mm box, with friction: both turn
   const std::string text =
-      header(1.1e-5, 0.02) +
+      header(5.5e-6, 0.02) +
       body("a", 1.0, 1.0 / 12.0 * (0.01 + 0.0025), -0.1504, 0.07, 1.0, 0.0,
            "{ type = \"box\", width = 0.1, height = 0.05 }") +
       body("b", 4.0, 4.0 / 12.0 * (0.04 + 0.01), 0.0, 0.0, 0.0, 0.0, "{ type = \"box\", width = 0.2, height = 0.1 }") +

@@ -145,8 +145,8 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   # real input: recording from the Export panel (PNG folder, MP4), the keys, a live setting
   # typed into its field, the mouse spring on the notched plate, the deformation slider and key,
   # the teaching aids (F1 list, description, pace, reload of a scene file saved on disk), the
-  # inspector of the particle under the pointer
-  foreach(case record_png record_mp4 keys damping refusal spring deform teach inspect)
+  # inspector of the particle under the pointer, the drawing of active contacts (key and box)
+  foreach(case record_png record_mp4 keys damping refusal spring deform teach inspect contacts)
     gui_input_test(${case})
   endforeach()
 

@@ -11,13 +11,14 @@ struct KeyHelp {
   const char* action;
 };
 
-inline constexpr std::array<KeyHelp, 15> kKeyHelp = {{
+inline constexpr std::array<KeyHelp, 16> kKeyHelp = {{
     {"F1", "show or hide this list"},
     {"Space", "run / pause"},
     {"Right arrow", "one step (pauses first; hold to repeat)"},
     {"Backspace", "reset to t = 0 (keeps the live settings)"},
     {"F", "fit the view to the scene (and stop following a body)"},
     {"D", "undeformed shape, and back to the magnification before"},
+    {"C", "draw the active contacts (a dot and a stroke along the force), or not"},
     {"S", "screenshot periflex_<scene>_t<time>.png in the current folder"},
     {"Ctrl+Q", "quit"},
     {"Right-drag", "pan"},

@@ -5,6 +5,9 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <vector>
+
+#include "core/vec2.h"
 
 #include "mbs/force_element.h"
 #include "scene/contact_def.h"
@@ -15,6 +18,13 @@ namespace periflex {
 struct ContactTotals {
   double normal_force = 0.0;  // sum of the normal force magnitudes over active contacts [N]
   long active = 0;            // particles (rigid_particles) or pairs (particles) in contact
+};
+
+// One active contact for drawing: where it acts and the force on its first side (the particle,
+// the first particle of a pair, body_i) [N].
+struct ContactPoint {
+  Vec2 point = Vec2::Zero();
+  Vec2 force = Vec2::Zero();
 };
 
 class ContactElement : public ForceElement {
@@ -38,6 +48,10 @@ class ContactElement : public ForceElement {
   // Silling-Askari form sqrt(2 m / K) of the critical step of the particles this contact
   // touches, with the contact stiffness added to their bond stiffness (and its damping).
   virtual double critical_time_step() const = 0;
+  // Appends the active contacts at (q, qd) to `out` (for the drawing; a pass of its own, on one
+  // thread, only when a snapshot asks).
+  virtual void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                              std::vector<ContactPoint>& out) const = 0;
 
  protected:
   ContactDef def_;

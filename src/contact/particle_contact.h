@@ -35,6 +35,8 @@ class ParticleContact final : public ContactElement {
 
   ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   double critical_time_step() const override;
+  void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                      std::vector<ContactPoint>& out) const override;
 
   // Times the candidate list was built (the first build included), for tests.
   long rebuilds() const { return rebuilds_; }
@@ -49,8 +51,10 @@ class ParticleContact final : public ContactElement {
   void refresh(const Eigen::VectorXd& q) const;
   // Whether particles a and b (global numbering) are joined by an intact bond.
   bool bonded(int a, int b) const;
-  // One pass at q (and qd when given): forces into g when given, and the sums over pairs.
-  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const;
+  // One pass at q (and qd when given): forces into g when given, each pair's contact into
+  // points when given (then on one thread), and the sums over pairs.
+  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+             std::vector<ContactPoint>* points = nullptr) const;
 
   std::vector<const PdBody*> bodies_;
   // particles of all listed bodies, numbered body after body

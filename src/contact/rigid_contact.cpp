@@ -79,7 +79,8 @@ RigidContact::RigidContact(const ContactDef& def, int body_i, const BodyDef& def
 }
 
 void RigidContact::touch(const Side& a, size_t s, const Side& b, size_t t, const Eigen::VectorXd& q,
-                         const Eigen::VectorXd* qd, Eigen::VectorXd* g, Sums& sums) const {
+                         const Eigen::VectorXd* qd, Eigen::VectorXd* g, std::vector<ContactPoint>* points,
+                         Sums& sums) const {
   const Vec2 r_a(q[3 * a.body], q[3 * a.body + 1]), r_b(q[3 * b.body], q[3 * b.body + 1]);
   const Mat2 rot_a = rotation(q[3 * a.body + 2]), rot_b = rotation(q[3 * b.body + 2]);
   const double k = stiffness_, mu = def_.friction, v_reg = def_.friction_velocity;
@@ -124,10 +125,13 @@ void RigidContact::touch(const Side& a, size_t s, const Side& b, size_t t, const
       (*g)[3 * b.body + 1] -= force.y();
       (*g)[3 * b.body + 2] -= cross(c - r_b, force);
     }
+    // drawn as the force on body_i
+    if (points) points->push_back({c, a.body == i_.body ? force : Vec2(-force)});
   }
 }
 
-RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const {
+RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+                                       std::vector<ContactPoint>* points) const {
   Sums sums;
   const Vec2 r_i(q[3 * i_.body], q[3 * i_.body + 1]), r_j(q[3 * j_.body], q[3 * j_.body + 1]);
   const Mat2 rot_i = rotation(q[3 * i_.body + 2]), rot_j = rotation(q[3 * j_.body + 2]);
@@ -139,12 +143,12 @@ RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::Ve
       if (gap.squaredNorm() > reach * reach) continue;
       // a circle touches through its centre only; polygonal shapes through each other's corners
       if (i_.round(s)) {
-        touch(i_, s, j_, t, q, qd, g, sums);
+        touch(i_, s, j_, t, q, qd, g, points, sums);
       } else if (j_.round(t)) {
-        touch(j_, t, i_, s, q, qd, g, sums);
+        touch(j_, t, i_, s, q, qd, g, points, sums);
       } else {
-        touch(i_, s, j_, t, q, qd, g, sums);
-        touch(j_, t, i_, s, q, qd, g, sums);
+        touch(i_, s, j_, t, q, qd, g, points, sums);
+        touch(j_, t, i_, s, q, qd, g, points, sums);
       }
     }
   }
@@ -170,6 +174,11 @@ double RigidContact::dissipation_power(const Eigen::VectorXd& q, const Eigen::Ve
 ContactTotals RigidContact::totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   const Sums s = sweep(q, &qd, nullptr);
   return {s.normal_force, s.active};
+}
+
+void RigidContact::collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                  std::vector<ContactPoint>& out) const {
+  sweep(q, &qd, nullptr, &out);
 }
 
 double RigidContact::critical_time_step() const {

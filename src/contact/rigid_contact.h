@@ -37,6 +37,8 @@ class RigidContact final : public ContactElement {
 
   ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   double critical_time_step() const override;
+  void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                      std::vector<ContactPoint>& out) const override;
 
  private:
   // A point of a shape and the radius of its rounding, body-fixed.
@@ -59,9 +61,11 @@ class RigidContact final : public ContactElement {
   };
   static Side make_side(int body, const BodyDef& def);
   // The features of shape `s` of `a` against shape `t` of `b`: forces into g when given.
+  // The active contacts go into points when given (the force on a).
   void touch(const Side& a, size_t s, const Side& b, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
-             Eigen::VectorXd* g, Sums& sums) const;
-  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const;
+             Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const;
+  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+             std::vector<ContactPoint>* points = nullptr) const;
 
   Side i_, j_;
   double m_eff_ = 0.0, zeta_ = 0.0;

@@ -33,6 +33,8 @@ class RigidParticleContact final : public ContactElement {
 
   ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   double critical_time_step() const override;
+  void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                      std::vector<ContactPoint>& out) const override;
 
  private:
   // What one pass over the particles adds up.
@@ -41,9 +43,11 @@ class RigidParticleContact final : public ContactElement {
     double energy = 0.0, dissipation = 0.0, normal_force = 0.0;
     long active = 0;
   };
-  // One pass at q (and qd when given): particle forces into g when given, and the sums.
-  // Fixed chunks of particles, partial sums added in chunk order: the same bits on any thread count.
-  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const;
+  // One pass at q (and qd when given): particle forces into g when given, the active contacts
+  // into points when given (then on one thread), and the sums. Fixed chunks of particles,
+  // partial sums added in chunk order: the same bits on any thread count.
+  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+             std::vector<ContactPoint>* points = nullptr) const;
 
   int body_;
   double body_mass_;

@@ -226,6 +226,7 @@ void GuiApp::execute(const ScriptAction& a) {
     else if (layer == "bonds") render_.show_bonds = on;
     else if (layer == "probes") render_.show_probes = on;
     else if (layer == "trails") render_.show_trails = on;
+    else if (layer == "contacts") render_.show_contacts = on;
     else render_.show_overlay = on;
   } else if (verb == "fit") {
     fit_pending_ = true;
@@ -389,6 +390,11 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
                : render_.deform < 0.0f ? std::string("view: deformation auto (key)")
                                        : "view: deformation x" + format_deform(render_.deform) + " (key)");
     }
+    // C: draw the active contacts, or not
+    if (k.key == GLFW_KEY_C && !ctrl) {
+      render_.show_contacts = !render_.show_contacts;
+      log_.add(std::string("view: contacts ") + (render_.show_contacts ? "on" : "off") + " (key)");
+    }
     if (k.key == GLFW_KEY_Q && ctrl) {
       log_.add("quit (key)");
       quit_ = true;
@@ -534,6 +540,8 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
     std::snprintf(at, sizeof at, "%.9g %.9g", p.position.x(), p.position.y());
     dump_.state("probe_" + p.name, at);
   }
+  dump_.state("contacts", std::string(render_.show_contacts ? "1 " : "0 ") +
+                              std::to_string(worker_.snapshot().contacts.size()));
   // the description's first line, which a test compares with the scene file's first comment
   dump_.state("description", description_.substr(0, description_.find('\n')));
   dump_.state("scene_generation", static_cast<double>(status_.scene_generation));

@@ -258,6 +258,7 @@ std::string describe_view_change(const RenderSettings& a, const RenderSettings& 
   flag("bonds", a.show_bonds, b.show_bonds);
   flag("probes", a.show_probes, b.show_probes);
   flag("trails", a.show_trails, b.show_trails);
+  flag("contacts", a.show_contacts, b.show_contacts);
   flag("overlay", a.show_overlay, b.show_overlay);
   return out;
 }
@@ -311,6 +312,9 @@ void GuiApp::panel_view_controls() {
   ImGui::Checkbox("probes", &render_.show_probes);
   ImGui::SameLine();
   ImGui::Checkbox("trails", &render_.show_trails);
+  ImGui::Checkbox("contacts (C)", &render_.show_contacts);
+  dump_.note_item("show_contacts");
+  ImGui::SameLine();
   ImGui::Checkbox("overlay", &render_.show_overlay);
 
   // follow one rigid body, or none

@@ -86,9 +86,9 @@ void check_arguments(const ScriptAction& a) {
   }
   if (a.verb == "show") {
     static const std::set<std::string> layers = {"bodies", "markers", "springs", "bonds",
-                                                 "probes", "trails", "overlay"};
+                                                 "probes", "trails", "contacts", "overlay"};
     if (!layers.count(a.args[0])) {
-      fail(a.text, "show takes bodies, markers, springs, bonds, probes, trails or overlay");
+      fail(a.text, "show takes bodies, markers, springs, bonds, probes, trails, contacts or overlay");
     }
     if (a.args[1] != "on" && a.args[1] != "off") fail(a.text, "show ... takes on or off");
   }

@@ -11,7 +11,7 @@ struct KeyHelp {
   const char* action;
 };
 
-inline constexpr std::array<KeyHelp, 18> kKeyHelp = {{
+inline constexpr std::array<KeyHelp, 19> kKeyHelp = {{
     {"F1", "show or hide this list"},
     {"Space", "run / pause"},
     {"Right arrow", "one step (pauses first; hold to repeat)"},
@@ -21,6 +21,7 @@ inline constexpr std::array<KeyHelp, 18> kKeyHelp = {{
     {"P", "show or hide the plot window (wheel: zoom, drag: pan, double-click: whole run)"},
     {"K", "knife on / off"},
     {"Left-drag with the knife on", "cut the bonds the segment crosses (live; Backspace resets)"},
+    {"C", "draw the active contacts (a dot and a stroke along the force), or not"},
     {"S", "screenshot periflex_<scene>_t<time>.png in the current folder"},
     {"Ctrl+Q", "quit"},
     {"Right-drag", "pan"},

@@ -100,6 +100,7 @@ std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std:
   recorder.settings.field = parse_field(options.field);
   parse_camera(options.camera, recorder);
   if (!options.colormap.empty()) recorder.settings.colormap = options.colormap;
+  recorder.settings.show_contacts = options.draw_contacts;
   double deform = -1.0;
   if (!parse_deform(options.deform, deform))
     throw InputError({"command line", 0, 0, "--deform"}, parse_deform_check(options.deform));

@@ -65,6 +65,7 @@ void add_render_options(CLI::App* command, RunOptions& o) {
                       "View of the frames: grow (fit the first frame, widen when the scene leaves it; "
                       "default), fit (fit the first frame and keep it), or X,Y,HEIGHT (fixed, metres)");
   add_deform_option(command, o.deform);
+  command->add_flag("--draw-contacts", o.draw_contacts, "Draw the active contacts (a dot and a stroke along the force)");
 }
 
 int run_main(int argc, char** argv) {

@@ -40,6 +40,7 @@ struct RunOptions {
   std::string field;                    // damage | displacement | speed | strain
   std::string camera;                   // grow (default) | fit | "X,Y,HEIGHT"
   std::string deform;                   // deformation magnification: auto (default) | K >= 0
+  bool draw_contacts = false;           // draw the active contacts and their forces
 };
 
 // Returns the process exit code (0 ok, 2 bad input, 3 numerical failure, 1 other).

@@ -1,6 +1,7 @@
 #include "contact/contact_factory.h"
 
 #include "contact/particle_contact.h"
+#include "contact/rigid_contact.h"
 #include "contact/rigid_particle_contact.h"
 #include "coupling/rigid_flexible_joint.h"
 #include "solve/system_model.h"
@@ -33,6 +34,11 @@ void build_contacts(const SceneDef& scene, SystemModel& model) {
       const BodyDef& rigid = model.bodies[body];
       model.contacts.push_back(std::make_unique<RigidParticleContact>(
           def, body, rigid.mass, rigid.shapes, flex, attached_particles(model, body, flex)));
+    } else if (def.kind == ContactDef::Kind::kRigid) {
+      const int body_i = model.body_index(def.body, def.where, "contact '" + def.name + "'");
+      const int body_j = model.body_index(def.body_j, def.where, "contact '" + def.name + "'");
+      model.contacts.push_back(
+          std::make_unique<RigidContact>(def, body_i, model.bodies[body_i], body_j, model.bodies[body_j]));
     } else {
       std::vector<const PdBody*> bodies;
       for (const auto& name : def.flex_bodies) bodies.push_back(model.flex_bodies[model.flex_index(name)].get());

@@ -17,7 +17,7 @@ constexpr double kContactsPerParticle = 4.0;
 }  // namespace
 
 ParticleContact::ParticleContact(const ContactDef& def, const std::vector<const PdBody*>& bodies)
-    : def_(def), bodies_(bodies) {
+    : ContactElement(def), bodies_(bodies) {
   double spacing = 0.0, inverse_stiffness = 0.0;
   bond_step_ = 0.0;
   for (size_t b = 0; b < bodies_.size(); ++b) {
@@ -108,13 +108,13 @@ void ParticleContact::refresh(const Eigen::VectorXd& q) const {
 }
 
 ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
-                                             Eigen::VectorXd* g) const {
+                                             Eigen::VectorXd* g, std::vector<ContactPoint>* points) const {
   refresh(q);
   const int n = static_cast<int>(coordinate_.size());
   const int chunks = (n + kChunkParticles - 1) / kChunkParticles;
   const double k = stiffness_, d = distance_;
   std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
-#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1 && points == nullptr)
   for (int c = 0; c < chunks; ++c) {
     Sums& s = partial[c];
     const int end = std::min(n, (c + 1) * kChunkParticles);
@@ -140,6 +140,9 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
           s.energy += 0.5 * k * overlap * overlap;
           s.normal_force += f;
           s.dissipation += (f - k * overlap) * overlap_rate;
+          // midway between the two, the force on a
+          if (points)
+            points->push_back({Vec2(q[xa] + 0.5 * dx, q[xa + 1] + 0.5 * dy), Vec2(-f * dx / r, -f * dy / r)});
         }
       }
       if (g) {
@@ -177,6 +180,11 @@ double ParticleContact::dissipation_power(const Eigen::VectorXd& q, const Eigen:
 ContactTotals ParticleContact::totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   const Sums s = sweep(q, &qd, nullptr);
   return {s.normal_force, s.active};
+}
+
+void ParticleContact::collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                     std::vector<ContactPoint>& out) const {
+  sweep(q, &qd, nullptr, &out);
 }
 
 double ParticleContact::critical_time_step() const {

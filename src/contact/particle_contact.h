@@ -27,7 +27,6 @@ class ParticleContact final : public ContactElement {
  public:
   ParticleContact(const ContactDef& def, const std::vector<const PdBody*>& bodies);
 
-  const std::string& name() const override { return def_.name; }
   void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
   double add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
                                 Eigen::VectorXd& g) override;
@@ -38,9 +37,8 @@ class ParticleContact final : public ContactElement {
 
   ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   double critical_time_step() const override;
-  double bond_critical_time_step() const override { return bond_step_; }
-  double stiffness() const override { return stiffness_; }
-  const ContactDef& def() const override { return def_; }
+  void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                      std::vector<ContactPoint>& out) const override;
 
   void save_cache(ContactCache& out) const override;
   // Throws std::invalid_argument for a list of other particles.
@@ -59,16 +57,17 @@ class ParticleContact final : public ContactElement {
   void refresh(const Eigen::VectorXd& q) const;
   // Whether particles a and b (global numbering) are joined by an intact bond.
   bool bonded(int a, int b) const;
-  // One pass at q (and qd when given): forces into g when given, and the sums over pairs.
-  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const;
+  // One pass at q (and qd when given): forces into g when given, each pair's contact into
+  // points when given (then on one thread), and the sums over pairs.
+  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+             std::vector<ContactPoint>* points = nullptr) const;
 
-  ContactDef def_;
   std::vector<const PdBody*> bodies_;
   // particles of all listed bodies, numbered body after body
   std::vector<int> coordinate_, body_of_, local_;
   std::vector<double> mass_;
-  double distance_ = 0.0, skin_ = 0.0, stiffness_ = 0.0, zeta_ = 0.0;
-  double bond_step_ = 0.0, lightest_ = 0.0;
+  double distance_ = 0.0, skin_ = 0.0, zeta_ = 0.0;
+  double lightest_ = 0.0;
 
   // the Verlet list and the state it was built at
   mutable NeighborList candidates_;

@@ -17,7 +17,7 @@ constexpr int kChunkParticles = 2048;
 RigidParticleContact::RigidParticleContact(const ContactDef& def, int body, double body_mass,
                                            std::vector<ShapeDef> shapes, const PdBody& flex,
                                            const std::vector<int>& excluded)
-    : def_(def),
+    : ContactElement(def),
       body_(body),
       body_mass_(body_mass),
       shapes_(std::move(shapes)),
@@ -40,7 +40,7 @@ RigidParticleContact::RigidParticleContact(const ContactDef& def, int body, doub
 }
 
 RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
-                                                       Eigen::VectorXd* g) const {
+                                                       Eigen::VectorXd* g, std::vector<ContactPoint>* points) const {
   const Vec2 r(q[3 * body_], q[3 * body_ + 1]);
   const double phi = q[3 * body_ + 2];
   const Mat2 a = rotation(phi), a_t = a.transpose();
@@ -51,7 +51,7 @@ RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q,
   const int n = static_cast<int>(mass_.size());
   const int chunks = (n + kChunkParticles - 1) / kChunkParticles;
   std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
-#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1)
+#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1 && points == nullptr)
   for (int c = 0; c < chunks; ++c) {
     Sums& s = partial[c];
     const int end = std::min(n, (c + 1) * kChunkParticles);
@@ -98,6 +98,7 @@ RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q,
         (*g)[x] += force.x();
         (*g)[x + 1] += force.y();
       }
+      if (points) points->push_back({p, force});
       // the body gets -F at the particle
       s.fx -= force.x();
       s.fy -= force.y();
@@ -144,6 +145,11 @@ double RigidParticleContact::dissipation_power(const Eigen::VectorXd& q, const E
 ContactTotals RigidParticleContact::totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) {
   const Sums s = sweep(q, &qd, nullptr);
   return {s.normal_force, s.active};
+}
+
+void RigidParticleContact::collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                                          std::vector<ContactPoint>& out) const {
+  sweep(q, &qd, nullptr, &out);
 }
 
 double RigidParticleContact::critical_time_step() const {

@@ -25,7 +25,6 @@ class RigidParticleContact final : public ContactElement {
   RigidParticleContact(const ContactDef& def, int body, double body_mass, std::vector<ShapeDef> shapes,
                        const PdBody& flex, const std::vector<int>& excluded);
 
-  const std::string& name() const override { return def_.name; }
   void add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) override;
   double add_forces_dissipating(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t,
                                 Eigen::VectorXd& g) override;
@@ -34,9 +33,8 @@ class RigidParticleContact final : public ContactElement {
 
   ContactTotals totals(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) override;
   double critical_time_step() const override;
-  double bond_critical_time_step() const override { return bond_step_; }
-  double stiffness() const override { return stiffness_; }
-  const ContactDef& def() const override { return def_; }
+  void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
+                      std::vector<ContactPoint>& out) const override;
 
  private:
   // What one pass over the particles adds up.
@@ -45,11 +43,12 @@ class RigidParticleContact final : public ContactElement {
     double energy = 0.0, dissipation = 0.0, normal_force = 0.0;
     long active = 0;
   };
-  // One pass at q (and qd when given): particle forces into g when given, and the sums.
-  // Fixed chunks of particles, partial sums added in chunk order: the same bits on any thread count.
-  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g) const;
+  // One pass at q (and qd when given): particle forces into g when given, the active contacts
+  // into points when given (then on one thread), and the sums. Fixed chunks of particles,
+  // partial sums added in chunk order: the same bits on any thread count.
+  Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+             std::vector<ContactPoint>* points = nullptr) const;
 
-  ContactDef def_;
   int body_;
   double body_mass_;
   std::vector<ShapeDef> shapes_;
@@ -58,8 +57,8 @@ class RigidParticleContact final : public ContactElement {
   int offset_;                    // q index of the first particle's x
   std::vector<double> mass_;      // per particle
   std::vector<char> excluded_;    // per particle
-  double stiffness_, margin_, zeta_;
-  double bond_step_ = 0.0, lightest_ = 0.0;
+  double margin_, zeta_;
+  double lightest_ = 0.0;
 };
 
 }  // namespace periflex

@@ -69,6 +69,7 @@ constexpr Rgba8 kJoint{245, 245, 245, 255}, kJointHole{30, 30, 34, 255};
 constexpr Rgba8 kSlider{240, 220, 120, 255}, kDriver{255, 120, 60, 255}, kAttachment{230, 80, 230, 255};
 constexpr Rgba8 kSpring{140, 220, 140, 255}, kBond{200, 200, 210, 110}, kProbe{255, 235, 60, 255};
 constexpr Rgba8 kTrail{90, 200, 255, 255};
+constexpr Rgba8 kContact{0, 255, 160, 255};
 constexpr float kAttachedRing[4] = {0.95f, 0.3f, 0.95f, 1.0f};
 // Below this disc diameter (pixels) a smoothed edge is mostly blur: plain squares instead.
 constexpr double kDenseDiscPixels = 2.5;
@@ -442,6 +443,18 @@ void Renderer::Impl::build_overlay_geometry(const Snapshot& s, const RenderSetti
   }
   if (settings.show_probes)
     for (const auto& p : s.probes) mesh.cross_px(p.position, 4.0, 1.5, kProbe);
+  // active contacts: a dot where each acts and a stroke along its force, 6 to 24 px long by its
+  // share of the largest force
+  if (settings.show_contacts && !s.contacts.empty()) {
+    double largest = 0.0;
+    for (const auto& c : s.contacts) largest = std::max(largest, c.force.norm());
+    for (const auto& c : s.contacts) {
+      const double f = c.force.norm();
+      mesh.disc_px(c.point, 2.5, kContact);
+      if (f > 0.0 && largest > 0.0)
+        mesh.line(c.point, c.point + c.force / f * ((6.0 + 18.0 * f / largest) * mesh.pixel_world()), 1.5, kContact);
+    }
+  }
 }
 
 Renderer::Renderer(const std::string& resource_root) : impl_(std::make_unique<Impl>()) {

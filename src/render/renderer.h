@@ -51,6 +51,7 @@ struct RenderSettings {
   bool show_bonds = false;         // only small bodies carry bond pairs
   bool show_probes = true;
   bool show_trails = false;
+  bool show_contacts = false;      // active contact points and their forces
   bool show_overlay = true;        // time, scene name, colour legend
   float particle_scale = 1.0f;     // disc diameter in grid spacings
   // Deformation magnification K (render/deformation.h): 1 true scale, 0 undeformed; negative

@@ -6,7 +6,8 @@ namespace periflex {
 
 const std::set<std::string> kContactKeys = {"name",     "type",           "body",           "flex_body",
                                             "flex_bodies", "stiffness",   "restitution",    "friction",
-                                            "friction_velocity", "margin", "distance_ratio", "skin_ratio"};
+                                            "friction_velocity", "margin", "distance_ratio", "skin_ratio",
+                                            "body_i",   "body_j"};
 
 namespace {
 
@@ -31,14 +32,22 @@ std::string flex_reference(TableReader& in, const toml::node& node, const std::s
 }  // namespace
 
 ContactDef::Kind read_contact_kind(TableReader& in) {
-  const std::string type = in.required_choice("type", {"rigid_particles", "particles"});
+  const std::string type = in.required_choice("type", {"rigid_particles", "particles", "rigid"});
+  if (type == "rigid") return ContactDef::Kind::kRigid;
   return type == "particles" ? ContactDef::Kind::kParticles : ContactDef::Kind::kRigidParticles;
 }
 
 void read_contact_law(TableReader& in, const std::set<std::string>& flex_names, ContactDef& contact) {
   const bool rigid = contact.kind == ContactDef::Kind::kRigidParticles;
-  // the bodies: one flexible body against a rigid one, or a list of flexible bodies
-  if (rigid) {
+  const bool two_rigid = contact.kind == ContactDef::Kind::kRigid;
+  // the bodies: one flexible body against a rigid one, or a list of flexible bodies (two rigid
+  // bodies are read with the other references)
+  if (two_rigid) {
+    // no particles: no material to take a stiffness from
+    if (!in.has("stiffness"))
+      in.fail_missing("stiffness", "the penalty stiffness [N/m] of each contact point (two rigid bodies have no "
+                                   "material to take it from)");
+  } else if (rigid) {
     const toml::node* node = in.node("flex_body");
     if (node == nullptr) in.fail_missing("flex_body", "the flexible body the rigid body touches");
     contact.flex_bodies = {flex_reference(in, *node, in.key_path("flex_body"), flex_names)};
@@ -64,10 +73,10 @@ void read_contact_law(TableReader& in, const std::set<std::string>& flex_names, 
   if (contact.restitution > 1.0)
     in.fail("restitution", "restitution must be in (0, 1] (1: no damping), found " +
                                format_number(contact.restitution));
-  if (rigid) {
+  if (rigid || two_rigid) {
     contact.friction = in.number("friction", contact.friction, Sign::kNonNegative);
     contact.friction_velocity = in.number("friction_velocity", contact.friction_velocity, Sign::kPositive);
-    contact.margin = in.number("margin", contact.margin, Sign::kNonNegative, true);
+    if (rigid) contact.margin = in.number("margin", contact.margin, Sign::kNonNegative, true);
   } else {
     contact.distance_ratio = in.number("distance_ratio", contact.distance_ratio, Sign::kPositive);
     if (contact.distance_ratio > 1.0)
@@ -77,7 +86,8 @@ void read_contact_law(TableReader& in, const std::set<std::string>& flex_names, 
     if (contact.skin_ratio > 5.0)
       in.fail("skin_ratio", "skin_ratio must be in (0, 5] grid spacings, found " + format_number(contact.skin_ratio));
   }
-  in.finish(kContactKeys, std::string("a ") + (rigid ? "rigid_particles" : "particles") + " contact");
+  in.finish(kContactKeys,
+            std::string("a ") + (two_rigid ? "rigid" : rigid ? "rigid_particles" : "particles") + " contact");
 }
 
 }  // namespace periflex

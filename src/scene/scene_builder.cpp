@@ -663,6 +663,19 @@ class SceneBuilder {
         in.fail("body", "body '" + contact.body + "' has no shape to touch; give it a shape (its drawing shape is "
                         "its contact shape)");
     }
+    if (contact.kind == ContactDef::Kind::kRigid) {
+      // two rigid bodies, each with a shape
+      contact.body = rigid_reference(in, "body_i", false);
+      contact.body_j = rigid_reference(in, "body_j", false);
+      if (contact.body_j == contact.body) in.fail("body_j", "body_j must differ from body_i ('" + contact.body + "')");
+      for (const auto& [key, name] : {std::pair<const char*, std::string>{"body_i", contact.body}, {"body_j", contact.body_j}}) {
+        const auto body = std::find_if(scene_.bodies.begin(), scene_.bodies.end(),
+                                       [&](const BodyDef& b) { return b.name == name; });
+        if (body->shapes.empty())
+          in.fail(key, "body '" + name + "' has no shape to touch; give it a shape (its drawing shape is its "
+                       "contact shape)");
+      }
+    }
     read_contact_law(in, flex_names_, contact);
     return contact;
   }

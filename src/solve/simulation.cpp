@@ -76,6 +76,7 @@ struct Simulation::Impl {
   bool initialized = false;
   double fracture_energy = 0.0;
   long broken_bonds = 0;
+  std::vector<ContactPoint> contact_points;  // scratch of fill_snapshot
   double initial_total = 0.0;      // kinetic + potential at t = 0
   double initial_gravity = 0.0;    // potential of gravity at t = 0
   double energy_scale = 0.0;       // for the divergence check
@@ -165,8 +166,8 @@ void Simulation::Impl::build_info() {
   }
   // a contact's stiffness adds to the bonds' on the particles it touches
   for (const auto& contact : m.contacts) {
-    const double crit = contact->critical_time_step();
-    if (crit > 0.0) critical_step = critical_step > 0.0 ? std::min(critical_step, crit) : crit;
+    const double crit = contact->critical_time_step();  // infinite between massless bodies
+    if (crit > 0.0 && std::isfinite(crit)) critical_step = critical_step > 0.0 ? std::min(critical_step, crit) : crit;
   }
   info.coordinates = m.coordinate_count;
   info.constraint_equations = m.constraint_rows;
@@ -923,6 +924,11 @@ void Simulation::fill_snapshot(Snapshot& out) const {
     const Vec2 at = p.is_particle() ? Vec2(q[p.particle_coordinate], q[p.particle_coordinate + 1]) : p.point.position(q);
     out.probes.push_back({p.name, at});
   }
+  // active contacts (a pass of each contact of its own; nothing without [[contact]])
+  s.contact_points.clear();
+  for (const auto& contact : m.contacts) contact->collect_points(q, qd, s.contact_points);
+  out.contacts.clear();
+  for (const ContactPoint& c : s.contact_points) out.contacts.push_back({c.point, c.force});
   out.energies = s.energies();
   out.violation_position = s.dynamics->position_violation(s.time, q);
   out.violation_velocity = s.dynamics->velocity_violation(s.time, q, qd);

@@ -88,6 +88,10 @@ struct Snapshot {
   struct Probe { std::string name; Vec2 position = Vec2::Zero(); };
   std::vector<Probe> probes;
 
+  // Active contacts: where each acts and the force on its first side [N] (the particle, the
+  // first particle of a pair, body_i). Empty without [[contact]].
+  struct Contact { Vec2 point = Vec2::Zero(), force = Vec2::Zero(); };
+  std::vector<Contact> contacts;
   Energies energies;
   double violation_position = 0.0;
   double violation_velocity = 0.0;

@@ -9,7 +9,7 @@
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
 # CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect | plot |
-#       knife | body
+#       knife | body | contacts
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -295,6 +295,19 @@ case "$case_name" in
     holds "$moved > 10 * $noise" || fail "moved $moved m, not 10x the noise $noise m"
     holds "$moved > 5e-4" || fail "moved $moved m: less than half a grid spacing"
     wait_until 10 "the release" '[[ -z "$(state grabbed)" ]]'
+    quit
+    ;;
+  contacts)
+    # the hammer striking its beam: contacts are drawn after the C key, not after the box is
+    # clicked off again; the program reports (state contacts) the flag and the contacts it has
+    start hammer.toml
+    [[ "$(state contacts)" == 0* ]] || fail "contacts drawn before asked: $(state contacts)"
+    wait_until 60 "active contacts (the hammer on the beam)" '(( $(state contacts | cut -d" " -f2) > 0 ))'
+    tap c
+    wait_until 10 "contacts drawn after the C key" '[[ "$(state contacts)" == 1* ]]'
+    grep -q "view: contacts on (key)" "$log" || fail "the key's change is not in the log"
+    click show_contacts
+    wait_until 10 "contacts off after the box is clicked" '[[ "$(state contacts)" == 0* ]]'
     quit
     ;;
   deform)

@@ -41,8 +41,9 @@ inline std::map<long, double> reference_b0_x(double theta0, double omega0, doubl
   return out;
 }
 
-// series.csv as columns by name and rows of numbers.
-struct Series {
+// series.csv as columns by name and rows of numbers; a missing column is -1 (the probes of the
+// pin are optional). Named apart from run_output_files.h's Series: one name, one definition.
+struct FourBarSeries {
   std::vector<std::string> names;
   std::vector<std::vector<double>> rows;
   int column(const std::string& name) const {
@@ -52,8 +53,8 @@ struct Series {
   }
 };
 
-inline Series read_series(const std::filesystem::path& file) {
-  Series s;
+inline FourBarSeries read_four_bar_series(const std::filesystem::path& file) {
+  FourBarSeries s;
   std::istringstream text(read_text(file));
   std::string line;
   std::getline(text, line);
@@ -91,7 +92,7 @@ inline FourBarOutcome run_and_compare(const std::string& tag, const std::string&
   const auto r = run_periflex("run " + scene_file + " --quiet " + arguments + " --out " + out.string());
   o.exit_code = r.exit_code;
   o.output = r.output;
-  const Series s = read_series(out / "series.csv");
+  const FourBarSeries s = read_four_bar_series(out / "series.csv");
   const int t = s.column("t"), x = s.column("probe.b0.x");
   const int px = s.column("probe.pin0_end.x"), py = s.column("probe.pin0_end.y");
   if (t < 0 || x < 0) return o;

@@ -41,7 +41,7 @@ struct BranchSigns {
   double coupler_angle = 1e300, energy_error = 1e300;
 };
 BranchSigns branch_signs(const std::string& tag) {
-  const Series s = read_series(std::filesystem::current_path() / ("cli_test_out_singular_" + tag) / "series.csv");
+  const FourBarSeries s = read_four_bar_series(std::filesystem::current_path() / ("cli_test_out_singular_" + tag) / "series.csv");
   BranchSigns out;
   const int e = s.column("energy_balance");
   if (e < 0) return out;

@@ -213,6 +213,21 @@ std::string TableReader::required_string(std::string_view key) {
   return *value;
 }
 
+std::vector<std::string> TableReader::strings(std::string_view key) {
+  const toml::node* value = node(key);
+  if (!value) return {};
+  if (const auto* s = value->as_string()) return {s->get()};
+  const toml::array* array = value->as_array();
+  if (!array) fail(key, "expected a string or an array of strings, found " + describe_type(*value));
+  std::vector<std::string> out;
+  for (const toml::node& item : *array) {
+    const auto* s = item.as_string();
+    if (!s) fail(key, "expected strings only, found " + describe_type(item));
+    out.push_back(s->get());
+  }
+  return out;
+}
+
 static std::string join(const std::vector<std::string>& words, const std::string& separator) {
   std::string out;
   for (size_t k = 0; k < words.size(); ++k) out += (k ? separator : "") + words[k];

@@ -100,6 +100,8 @@ class TableReader {
   std::optional<std::string> optional_string(std::string_view key);
   std::string string(std::string_view key, const std::string& fallback);
   std::string required_string(std::string_view key);
+  // A string or an array of strings; empty when absent.
+  std::vector<std::string> strings(std::string_view key);
   // A string that must be one of `choices`; names them when it is not.
   std::string choice(std::string_view key, const std::vector<std::string>& choices, const std::string& fallback);
   std::string required_choice(std::string_view key, const std::vector<std::string>& choices);

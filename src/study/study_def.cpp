@@ -7,6 +7,7 @@
 #include <toml++/toml.h>
 
 #include "scene/toml_reader.h"
+#include "study/scene_reference.h"
 
 namespace periflex {
 
@@ -22,25 +23,6 @@ std::vector<double> positive_list(TableReader& reader, std::string_view key) {
   else out.push_back(read_number(reader.context(), *node, dotted, Sign::kPositive));
   for (double v : out)
     if (!(v > 0.0)) reader.fail(key, "every entry must be positive");
-  return out;
-}
-
-// A list of strings under `key`, or a single string.
-std::vector<std::string> string_list(TableReader& reader, std::string_view key) {
-  const toml::node* node = reader.node(key);
-  if (!node) return {};
-  std::vector<std::string> out;
-  if (const auto* s = node->as_string()) {
-    out.push_back(s->get());
-    return out;
-  }
-  const toml::array* array = node->as_array();
-  if (!array) reader.fail(key, "expected a string or an array of strings, found " + describe_type(*node));
-  for (const toml::node& item : *array) {
-    const auto* s = item.as_string();
-    if (!s) reader.fail(key, "expected strings only, found " + describe_type(item));
-    out.push_back(s->get());
-  }
   return out;
 }
 
@@ -77,31 +59,27 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
 
   StudyDef study;
   study.path = display_path;
-  const std::filesystem::path file(display_path);
   TableReader top(context, root, "", "the study file");
 
   // [study]
   const toml::table* table = top.optional_table("study");
   if (!table) top.fail_missing("study", "a study file needs a [study] table");
   TableReader s(context, *table, "study", "[study]");
-  study.name = s.string("name", file.stem().string());
-  const std::string scene = s.required_string("scene");
-  study.scene_path = std::filesystem::path(scene).is_absolute()
-                         ? scene : (file.parent_path() / scene).lexically_normal().string();
-  study.scene_overrides = string_list(s, "set");
+  SceneReference head = read_scene_reference(s, display_path);
+  study.name = std::move(head.name);
+  study.scene_path = std::move(head.scene_path);
+  study.scene_overrides = std::move(head.overrides);
   study.mode = s.choice("mode", {"time", "refine"}, "time") == "refine" ? StudyDef::Mode::kRefine
                                                                           : StudyDef::Mode::kTime;
   study.reference = s.choice("reference", {"pendulum_exact", "slider_crank_exact", "converged", "csv"}, "converged");
   // a reference trajectory from a file: which file, its time column and the compared columns
   if (s.has("reference_file")) {
     study.reference_file_where = context.locate(s.node("reference_file"), s.key_path("reference_file"));
-    const std::string csv = s.required_string("reference_file");
-    study.reference_file = std::filesystem::path(csv).is_absolute()
-                               ? csv : (file.parent_path() / csv).lexically_normal().string();
+    study.reference_file = path_beside(display_path, s.required_string("reference_file"));
   }
   study.reference_time_column = s.string("reference_time_column", "t");
   if (s.has("columns")) study.columns_where = context.locate(s.node("columns"), s.key_path("columns"));
-  study.columns = string_list(s, "columns");
+  study.columns = s.strings("columns");
   if (study.reference == "csv" && study.reference_file.empty())
     s.fail_missing("reference_file", "reference = \"csv\" needs the file of the reference trajectory");
   if (study.reference != "csv" && (!study.reference_file.empty() || !study.columns.empty()))
@@ -114,7 +92,7 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
   study.end_time = s.number("end_time", 0.0, Sign::kNonNegative, true);
   study.compare_interval = s.number("compare_interval", 0.0, Sign::kNonNegative, true);
   study.repeats = static_cast<int>(s.integer("repeats", 1, 1));
-  study.probes = string_list(s, "probes");
+  study.probes = s.strings("probes");
   study.crack_direction = s.axis("crack_direction", Vec2::UnitX());
   s.finish();
 
@@ -132,7 +110,7 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
       def.dt = positive_list(m, "dt");
       def.tolerances = positive_list(m, "tol");
       def.atol_ratio = m.number("atol_ratio", 1e-3, Sign::kPositive);
-      def.corrections = string_list(m, "correction");
+      def.corrections = m.strings("correction");
       for (const std::string& c : def.corrections)
         if (c != "none" && c != "baumgarte" && c != "projection")
           m.fail("correction", "unknown correction '" + c + "' (none, baumgarte, projection)");

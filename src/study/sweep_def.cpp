@@ -8,26 +8,11 @@
 
 #include "scene/scene_loader.h"
 #include "scene/toml_reader.h"
+#include "study/scene_reference.h"
 
 namespace periflex {
 
 namespace {
-
-// A string or an array of strings.
-std::vector<std::string> string_list(TableReader& reader, std::string_view key) {
-  const toml::node* node = reader.node(key);
-  if (!node) return {};
-  std::vector<std::string> out;
-  if (const auto* s = node->as_string()) return {s->get()};
-  const toml::array* array = node->as_array();
-  if (!array) reader.fail(key, "expected a string or an array of strings, found " + describe_type(*node));
-  for (const toml::node& item : *array) {
-    const auto* s = item.as_string();
-    if (!s) reader.fail(key, "expected strings only, found " + describe_type(item));
-    out.push_back(s->get());
-  }
-  return out;
-}
 
 // A TOML value as the text --set reads back to the same value: a float in the fewest digits
 // that give the same double, and still a float (1.0, not 1).
@@ -55,22 +40,20 @@ SweepDef parse_sweep(const std::string& toml_text, const std::string& display_pa
   toml::table root = parse_toml_located(toml_text, display_path);
   SweepDef sweep;
   sweep.path = display_path;
-  const std::filesystem::path file(display_path);
   TableReader top(context, root, "", "the sweep file");
 
   // [sweep]
   const toml::table* table = top.optional_table("sweep");
   if (!table) top.fail_missing("sweep", "a sweep file needs a [sweep] table");
   TableReader s(context, *table, "sweep", "[sweep]");
-  sweep.name = s.string("name", file.stem().string());
-  const std::string scene = s.required_string("scene");
-  sweep.scene_path = std::filesystem::path(scene).is_absolute()
-                         ? scene : (file.parent_path() / scene).lexically_normal().string();
-  sweep.overrides = string_list(s, "set");
+  SceneReference head = read_scene_reference(s, display_path);
+  sweep.name = std::move(head.name);
+  sweep.scene_path = std::move(head.scene_path);
+  sweep.overrides = std::move(head.overrides);
   sweep.jobs = static_cast<int>(s.integer("jobs", 2, 1));
   sweep.timeout_seconds = s.number("timeout", 3600.0, Sign::kPositive);
   sweep.memory_bytes = s.number("memory_gb", 4.0, Sign::kPositive) * 1e9;
-  sweep.series = string_list(s, "series");
+  sweep.series = s.strings("series");
   s.finish();
 
   // [[parameter]]: a key and its values

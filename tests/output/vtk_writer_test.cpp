@@ -2,6 +2,8 @@
 // values in their binary appended block, read back as a VTK reader reads them.
 #include "output/vtk_writer.h"
 
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -114,7 +116,7 @@ TEST(VtkWriter, RigidBodiesBecomePolygonsAtTheirPose) {
 }
 
 TEST(VtkWriter, WritesCompleteFileAndLeavesNoTemporary) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "periflex_vtk_writer_test";
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("periflex_vtk_writer_test_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "particles_000000.vtu").string();
   write_vtu(path, three_particles());

@@ -64,7 +64,7 @@ TEST(SceneBudget, MemoryEstimateIsWithinOneAndAHalfOfThePeakOfTheRun) {
       {root + "/tests/data/scenes/thin_sliver.toml", "verlet", 1e-7},
       {root + "/tests/data/scenes/thin_sliver.toml", "rk4", 3e-8},
   };
-  const auto dir = std::filesystem::temp_directory_path() / "periflex_budget_memory";
+  const auto dir = std::filesystem::temp_directory_path() / ("periflex_budget_memory_" + std::to_string(::getpid()));
   for (const MemoryCase& c : cases) {
     std::filesystem::remove_all(dir);
     const std::string set = "solver.integrator=" + c.integrator;

@@ -1,5 +1,7 @@
 // `periflex study` as a user runs it: exit code 0, the three files, and the plot or a clear word
 // that there is none. Skipped (with the reason) while the program does not offer the command.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -31,7 +33,7 @@ ProgramRun run_program(const std::string& arguments) {
 }
 
 TEST(StudyCommand, WritesCsvMarkdownAndPlotOrSaysWhy) {
-  const auto dir = std::filesystem::temp_directory_path() / "periflex_study_command_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("periflex_study_command_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   const auto study = dir / "study.toml";

@@ -1,6 +1,8 @@
 // `periflex study` against a reference trajectory the user supplies as CSV, as typed: the
 // IFToMM A01 pendulum studied against a file written from its closed form (Jacobi elliptic
 // functions) at uneven times, and the files and study keys a careless user gets wrong.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
@@ -40,7 +42,7 @@ ProgramRun run_program(const std::string& arguments) {
 }
 
 fs::path fresh(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("periflex_csv_reference_" + name);
+  const fs::path dir = fs::temp_directory_path() / ("periflex_csv_reference_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

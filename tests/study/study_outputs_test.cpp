@@ -1,6 +1,8 @@
 // The study pipeline end to end on the slider-crank: a CSV with the documented columns and one
 // row per grid point, errors against the closed form that fall as dt falls, and the Markdown
 // table beside it.
+#include <unistd.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -48,7 +50,7 @@ dt = 5e-3
 correction = "projection"
 )";
   const StudyResult result = run_study(parse_study(text, "study_outputs_test.toml"));
-  const auto dir = std::filesystem::temp_directory_path() / "periflex_study_outputs_test";
+  const auto dir = std::filesystem::temp_directory_path() / ("periflex_study_outputs_test_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   const StudyOutputs outputs = write_study_outputs(result, dir.string());
 

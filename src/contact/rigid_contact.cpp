@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/contact_law.h"
 #include "contact/shape_distance.h"
 
 namespace periflex {
@@ -104,18 +105,10 @@ void RigidContact::touch(const Side& a, size_t s, const Side& b, size_t t, const
       const Vec2 v_b = Vec2((*qd)[3 * b.body], (*qd)[3 * b.body + 1]) + perp(c - r_b) * (*qd)[3 * b.body + 2];
       v_rel = v_a - v_b;
     }
-    const double depth_rate = -n.dot(v_rel);
-    // no pull: the dashpot may only lower the push to zero
-    const double f_n = std::max(0.0, k * depth + damping * depth_rate);
-    sums.normal_force += f_n;
-    sums.dissipation += (f_n - k * depth) * depth_rate;
-    Vec2 force = f_n * n;
-    if (mu > 0.0 && qd) {
-      const Vec2 v_t = v_rel - n.dot(v_rel) * n;
-      const Vec2 f_t = -mu * f_n / std::max(v_t.norm(), v_reg) * v_t;
-      sums.dissipation -= f_t.dot(v_t);
-      force += f_t;
-    }
+    const ContactForce law = contact_force(k, damping, depth, n, qd ? &v_rel : nullptr, mu, v_reg);
+    sums.normal_force += law.normal;
+    sums.dissipation += law.dissipation;
+    const Vec2 force = law.force;
     if (g) {
       // +F on a, -F on b, both at c
       (*g)[3 * a.body] += force.x();

@@ -13,7 +13,7 @@ struct ContactCache {
   std::vector<int64_t> row;
   std::vector<int32_t> col;
   std::vector<double> built_at;
-  long built_broken = -1;
+  long built_broken = -1;  // kept in the format; written as 0 and not read (bonded pairs are in the list)
 };
 
 }  // namespace periflex

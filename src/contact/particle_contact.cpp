@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "contact/contact_law.h"
 #include "contact/contact_stiffness.h"
 
 namespace periflex {
@@ -45,7 +46,7 @@ void ParticleContact::save_cache(ContactCache& out) const {
   out.row = candidates_.row;
   out.col = candidates_.col;
   out.built_at = built_at_;
-  out.built_broken = built_broken_;
+  out.built_broken = 0;  // no longer read: a broken bond needs no new search
 }
 
 void ParticleContact::restore_cache(const ContactCache& in) {
@@ -60,24 +61,33 @@ void ParticleContact::restore_cache(const ContactCache& in) {
   candidates_.row = in.row;
   candidates_.col = in.col;
   built_at_ = in.built_at;
-  built_broken_ = in.built_broken;
+  find_bonds();
 }
 
-bool ParticleContact::bonded(int a, int b) const {
-  if (body_of_[a] != body_of_[b]) return false;
+int64_t ParticleContact::bond_between(int a, int b) const {
+  if (body_of_[a] != body_of_[b]) return -1;
+  // the copy in the row of the lower particle: both rows of the pair read the same flag
   const BondStore& bonds = bodies_[body_of_[a]]->bonds();
-  const int i = local_[a], j = local_[b];
+  const int i = std::min(local_[a], local_[b]), j = std::max(local_[a], local_[b]);
   for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) {
-    if (bonds.neighbor[k] == j) return !bonds.broken[k];
+    if (bonds.neighbor[k] == j) return k;
   }
-  return false;
+  return -1;
+}
+
+void ParticleContact::find_bonds() const {
+  const int n = static_cast<int>(coordinate_.size());
+  candidate_bond_.assign(candidates_.col.size(), -1);
+  if (static_cast<int>(candidates_.row.size()) != n + 1) return;  // no list yet
+  for (int a = 0; a < n; ++a) {
+    for (int64_t e = candidates_.row[a]; e < candidates_.row[a + 1]; ++e)
+      candidate_bond_[e] = bond_between(a, candidates_.col[e]);
+  }
 }
 
 void ParticleContact::refresh(const Eigen::VectorXd& q) const {
   const int n = static_cast<int>(coordinate_.size());
-  long broken = 0;
-  for (const PdBody* body : bodies_) broken += body->broken_bond_count();
-  bool stale = built_broken_ != broken || static_cast<int>(built_at_.size()) != 2 * n;
+  bool stale = static_cast<int>(built_at_.size()) != 2 * n;
   // a particle that moved half the skin may have a new partner within d
   const double limit2 = 0.25 * skin_ * skin_;
   for (int a = 0; a < n && !stale; ++a) {
@@ -86,7 +96,8 @@ void ParticleContact::refresh(const Eigen::VectorXd& q) const {
   }
   if (!stale) return;
 
-  // every pair within d + skin, less the pairs an intact bond joins
+  // every pair within d + skin, bonded or not, with the bond that joins it: a bond that breaks
+  // later turns its pair into a contact pair without a new search
   x_.resize(n);
   y_.resize(n);
   built_at_.resize(2 * n);
@@ -95,15 +106,9 @@ void ParticleContact::refresh(const Eigen::VectorXd& q) const {
     y_[a] = built_at_[2 * a + 1] = q[coordinate_[a] + 1];
   }
   NeighborList all = find_neighbors(x_, y_, distance_ + skin_);
-  candidates_.row.assign(n + 1, 0);
-  candidates_.col.clear();
-  for (int a = 0; a < n; ++a) {
-    for (int64_t k = all.row[a]; k < all.row[a + 1]; ++k) {
-      if (!bonded(a, all.col[k])) candidates_.col.push_back(all.col[k]);
-    }
-    candidates_.row[a + 1] = static_cast<int64_t>(candidates_.col.size());
-  }
-  built_broken_ = broken;
+  candidates_.row = std::move(all.row);
+  candidates_.col = std::move(all.col);
+  find_bonds();
   ++rebuilds_;
 }
 
@@ -120,29 +125,33 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
     const int end = std::min(n, (c + 1) * kChunkParticles);
     for (int a = c * kChunkParticles; a < end; ++a) {
       const int xa = coordinate_[a];
+      const uint8_t* broken = bodies_[body_of_[a]]->bonds().broken.data();
       double fx = 0.0, fy = 0.0;
       for (int64_t e = candidates_.row[a]; e < candidates_.row[a + 1]; ++e) {
+        // an intact bond holds the pair (a bond breaking mid-step is flagged 2: broken)
+        const int64_t bond = candidate_bond_[e];
+        if (bond >= 0 && broken[bond] == 0) continue;
         const int b = candidates_.col[e], xb = coordinate_[b];
         const double dx = q[xb] - q[xa], dy = q[xb + 1] - q[xa + 1];
         const double r2 = dx * dx + dy * dy;
         if (r2 >= d * d || r2 == 0.0) continue;
         const double r = std::sqrt(r2), overlap = d - r;
-        // overlap rate: minus the rate the pair separates at
-        double overlap_rate = 0.0;
-        if (qd) overlap_rate = -(((*qd)[xb] - (*qd)[xa]) * dx + ((*qd)[xb + 1] - (*qd)[xa + 1]) * dy) / r;
+        // out of b towards a; the velocity of a relative to b
+        const Vec2 normal(-dx / r, -dy / r);
+        Vec2 v_rel = Vec2::Zero();
+        if (qd) v_rel = Vec2((*qd)[xa] - (*qd)[xb], (*qd)[xa + 1] - (*qd)[xb + 1]);
         const double m_eff = mass_[a] * mass_[b] / (mass_[a] + mass_[b]);
-        const double f = std::max(0.0, k * overlap + 2.0 * zeta_ * std::sqrt(k * m_eff) * overlap_rate);
-        // pushed away from b
-        fx -= f * dx / r;
-        fy -= f * dy / r;
+        const ContactForce law =
+            contact_force(k, 2.0 * zeta_ * std::sqrt(k * m_eff), overlap, normal, qd ? &v_rel : nullptr);
+        fx += law.force.x();
+        fy += law.force.y();
         if (a < b) {
           ++s.active;
           s.energy += 0.5 * k * overlap * overlap;
-          s.normal_force += f;
-          s.dissipation += (f - k * overlap) * overlap_rate;
+          s.normal_force += law.normal;
+          s.dissipation += law.dissipation;
           // midway between the two, the force on a
-          if (points)
-            points->push_back({Vec2(q[xa] + 0.5 * dx, q[xa + 1] + 0.5 * dy), Vec2(-f * dx / r, -f * dy / r)});
+          if (points) points->push_back({Vec2(q[xa] + 0.5 * dx, q[xa + 1] + 0.5 * dy), law.force});
         }
       }
       if (g) {

@@ -7,8 +7,9 @@
 // body or of two, push apart instead of passing through each other.
 //
 // Candidate pairs come from the bodies' cell-grid neighbour search (pd/neighbor_search.h)
-// with radius d + skin, kept until a particle has moved half the skin or a bond has broken
-// (a Verlet list). Each particle gathers its own force from its row of candidates, and both
+// with radius d + skin, bonded pairs included with their bond, kept until a particle has moved
+// half the skin (a Verlet list): a bond that breaks makes its pair a contact pair at once,
+// without a new search. Each particle gathers its own force from its row of candidates, and both
 // rows of a pair compute bit-identical, opposite forces: the same result on any thread count
 // and momentum conserved to round-off.
 #pragma once
@@ -52,11 +53,13 @@ class ParticleContact final : public ContactElement {
     double energy = 0.0, dissipation = 0.0, normal_force = 0.0;
     long active = 0;
   };
-  // Rebuilds the candidate pairs when a particle has moved half the skin since the last build
-  // or a bond has broken since then.
+  // Rebuilds the candidate pairs when a particle has moved half the skin since the last build.
   void refresh(const Eigen::VectorXd& q) const;
-  // Whether particles a and b (global numbering) are joined by an intact bond.
-  bool bonded(int a, int b) const;
+  // The bond (broken or not) joining particles a and b (global numbering) in their body's
+  // store, the copy in the lower particle's row; -1 when none does.
+  int64_t bond_between(int a, int b) const;
+  // candidate_bond_ for the candidate list.
+  void find_bonds() const;
   // One pass at q (and qd when given): forces into g when given, each pair's contact into
   // points when given (then on one thread), and the sums over pairs.
   Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
@@ -71,8 +74,8 @@ class ParticleContact final : public ContactElement {
 
   // the Verlet list and the state it was built at
   mutable NeighborList candidates_;
+  mutable std::vector<int64_t> candidate_bond_;  // per candidate: bond_between, -1 if none
   mutable std::vector<double> built_at_;  // x, y per particle
-  mutable long built_broken_ = -1;
   mutable long rebuilds_ = 0;
   mutable std::vector<double> x_, y_;
 };

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/contact_law.h"
 #include "contact/shape_distance.h"
 
 namespace periflex {
@@ -49,6 +50,14 @@ RigidContact::Side RigidContact::make_side(int body, const BodyDef& def) {
       case ShapeDef::Kind::kNone:
         break;
     }
+    // box and convex polygon: the separating axis test applies (a bar is rounded: not here)
+    bool convex = shape.kind == ShapeDef::Kind::kBox;
+    if (shape.kind == ShapeDef::Kind::kPolygon) {
+      std::vector<Vec2> corners_of;
+      for (const Feature& f : features) corners_of.push_back(f.point);
+      convex = is_convex(corners_of);
+    }
+    side.convex.push_back(convex);
     side.features.push_back(std::move(features));
     Vec2 centre;
     double radius;
@@ -83,8 +92,6 @@ void RigidContact::touch(const Side& a, size_t s, const Side& b, size_t t, const
                          Sums& sums) const {
   const Vec2 r_a(q[3 * a.body], q[3 * a.body + 1]), r_b(q[3 * b.body], q[3 * b.body + 1]);
   const Mat2 rot_a = rotation(q[3 * a.body + 2]), rot_b = rotation(q[3 * b.body + 2]);
-  const double k = stiffness_, mu = def_.friction, v_reg = def_.friction_velocity;
-  const double damping = 2.0 * zeta_ * std::sqrt(k * m_eff_);
   for (const Feature& feature : a.features[s]) {
     // the feature point in b's frame, its distance to b's shape
     const Vec2 x = r_a + rot_a * feature.point;
@@ -93,41 +100,57 @@ void RigidContact::touch(const Side& a, size_t s, const Side& b, size_t t, const
     if (depth <= 0.0) continue;
     const Vec2 n = rot_b * d.normal;  // out of b, towards a
     // one point for both bodies: midway between a's surface and b's along n
-    const Vec2 c = x - (feature.radius - 0.5 * depth) * n;
-    ++sums.active;
-    sums.energy += 0.5 * k * depth * depth;
-
-    // velocity of a's point relative to b's point at c
-    Vec2 v_rel = Vec2::Zero();
-    if (qd) {
-      const Vec2 v_a = Vec2((*qd)[3 * a.body], (*qd)[3 * a.body + 1]) + perp(c - r_a) * (*qd)[3 * a.body + 2];
-      const Vec2 v_b = Vec2((*qd)[3 * b.body], (*qd)[3 * b.body + 1]) + perp(c - r_b) * (*qd)[3 * b.body + 2];
-      v_rel = v_a - v_b;
-    }
-    const double depth_rate = -n.dot(v_rel);
-    // no pull: the dashpot may only lower the push to zero
-    const double f_n = std::max(0.0, k * depth + damping * depth_rate);
-    sums.normal_force += f_n;
-    sums.dissipation += (f_n - k * depth) * depth_rate;
-    Vec2 force = f_n * n;
-    if (mu > 0.0 && qd) {
-      const Vec2 v_t = v_rel - n.dot(v_rel) * n;
-      const Vec2 f_t = -mu * f_n / std::max(v_t.norm(), v_reg) * v_t;
-      sums.dissipation -= f_t.dot(v_t);
-      force += f_t;
-    }
-    if (g) {
-      // +F on a, -F on b, both at c
-      (*g)[3 * a.body] += force.x();
-      (*g)[3 * a.body + 1] += force.y();
-      (*g)[3 * a.body + 2] += cross(c - r_a, force);
-      (*g)[3 * b.body] -= force.x();
-      (*g)[3 * b.body + 1] -= force.y();
-      (*g)[3 * b.body + 2] -= cross(c - r_b, force);
-    }
-    // drawn as the force on body_i
-    if (points) points->push_back({c, a.body == i_.body ? force : Vec2(-force)});
+    apply(a.body, b.body, x - (feature.radius - 0.5 * depth) * n, n, depth, q, qd, g, points, sums);
   }
+}
+
+void RigidContact::apply(int a, int b, const Vec2& c, const Vec2& n, double depth, const Eigen::VectorXd& q,
+                         const Eigen::VectorXd* qd, Eigen::VectorXd* g, std::vector<ContactPoint>* points,
+                         Sums& sums) const {
+  const Vec2 r_a(q[3 * a], q[3 * a + 1]), r_b(q[3 * b], q[3 * b + 1]);
+  const double k = stiffness_, mu = def_.friction, v_reg = def_.friction_velocity;
+  const double damping = 2.0 * zeta_ * std::sqrt(k * m_eff_);
+  ++sums.active;
+  sums.energy += 0.5 * k * depth * depth;
+
+  // velocity of a's point relative to b's point at c
+  Vec2 v_rel = Vec2::Zero();
+  if (qd) {
+    const Vec2 v_a = Vec2((*qd)[3 * a], (*qd)[3 * a + 1]) + perp(c - r_a) * (*qd)[3 * a + 2];
+    const Vec2 v_b = Vec2((*qd)[3 * b], (*qd)[3 * b + 1]) + perp(c - r_b) * (*qd)[3 * b + 2];
+    v_rel = v_a - v_b;
+  }
+  const ContactForce law = contact_force(k, damping, depth, n, qd ? &v_rel : nullptr, mu, v_reg);
+  sums.normal_force += law.normal;
+  sums.dissipation += law.dissipation;
+  const Vec2 force = law.force;
+  if (g) {
+    // +F on a, -F on b, both at c
+    (*g)[3 * a] += force.x();
+    (*g)[3 * a + 1] += force.y();
+    (*g)[3 * a + 2] += cross(c - r_a, force);
+    (*g)[3 * b] -= force.x();
+    (*g)[3 * b + 1] -= force.y();
+    (*g)[3 * b + 2] -= cross(c - r_b, force);
+  }
+  // drawn as the force on body_i
+  if (points) points->push_back({c, a == i_.body ? force : Vec2(-force)});
+}
+
+bool RigidContact::cross_overlap(size_t s, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
+                                 Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const {
+  // both shapes' corners where the bodies are now
+  const auto world = [&](const Side& side, size_t shape) {
+    const Vec2 r(q[3 * side.body], q[3 * side.body + 1]);
+    const Mat2 rot = rotation(q[3 * side.body + 2]);
+    std::vector<Vec2> out;
+    for (const Feature& f : side.features[shape]) out.push_back(r + rot * f.point);
+    return out;
+  };
+  PolygonOverlap overlap;
+  if (!polygon_overlap(world(i_, s), world(j_, t), overlap)) return false;
+  apply(i_.body, j_.body, overlap.point, overlap.normal, overlap.depth, q, qd, g, points, sums);
+  return true;
 }
 
 RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
@@ -147,8 +170,12 @@ RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::Ve
       } else if (j_.round(t)) {
         touch(j_, t, i_, s, q, qd, g, points, sums);
       } else {
+        const long before = sums.active;
         touch(i_, s, j_, t, q, qd, g, points, sums);
         touch(j_, t, i_, s, q, qd, g, points, sums);
+        // no corner inside the other: two convex polygons may still cross (a plus sign); then
+        // one contact pushes them apart along the axis of least penetration
+        if (sums.active == before && i_.convex[s] && j_.convex[t]) cross_overlap(s, t, q, qd, g, points, sums);
       }
     }
   }

@@ -14,7 +14,10 @@
 // Pairs: circle-anything is exact (the circle's centre against the other shape); between two
 // polygonal shapes (box, polygon, bar) the corners and bar ends of each are tested against the
 // other, which finds every overlap in which a corner or end lies inside the other shape (every
-// strike, every resting face) but not two long shapes crossing like a plus sign.
+// strike, every resting face). Two convex polygons (boxes) crossing like a plus sign, with no
+// corner inside the other, are found by the separating axis test over both shapes' edge
+// normals and pushed apart by one contact along the axis of least penetration, at the middle
+// of the overlap. A bar crossing a shape with both ends outside it is not found.
 #pragma once
 
 #include <vector>
@@ -53,6 +56,7 @@ class RigidContact final : public ContactElement {
     std::vector<std::vector<Feature>> features;  // per shape
     std::vector<Vec2> bound_centre;
     std::vector<double> bound_radius;
+    std::vector<bool> convex;  // per shape: a box or a convex polygon
     bool round(size_t s) const { return shapes[s].kind == ShapeDef::Kind::kCircle; }
   };
   struct Sums {
@@ -64,6 +68,14 @@ class RigidContact final : public ContactElement {
   // The active contacts go into points when given (the force on a).
   void touch(const Side& a, size_t s, const Side& b, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
              Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const;
+  // One contact: depth along n (out of b towards a) at c; the law's force +F on a, -F on b.
+  void apply(int a, int b, const Vec2& c, const Vec2& n, double depth, const Eigen::VectorXd& q,
+             const Eigen::VectorXd* qd, Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const;
+  // Shapes s of i and t of j, two convex polygons, crossing with no corner inside the other:
+  // one contact at the middle of the overlap along the axis of least penetration. False when
+  // they do not overlap.
+  bool cross_overlap(size_t s, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+                     std::vector<ContactPoint>* points, Sums& sums) const;
   Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
              std::vector<ContactPoint>* points = nullptr) const;
 

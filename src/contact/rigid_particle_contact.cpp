@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/contact_law.h"
 #include "contact/contact_stiffness.h"
 #include "contact/shape_distance.h"
 
@@ -80,20 +81,12 @@ RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q,
       // relative velocity of the particle and the body point it touches
       Vec2 v_rel = Vec2::Zero();
       if (qd) v_rel = Vec2((*qd)[x], (*qd)[x + 1]) - (r_dot + perp(p - r) * omega);
-      const double depth_rate = -normal.dot(v_rel);
       const double m_eff = body_mass_ > 0.0 ? mass_[i] * body_mass_ / (mass_[i] + body_mass_) : mass_[i];
       const double damping = 2.0 * zeta_ * std::sqrt(k * m_eff);
-      // no pull: the dashpot may only lower the push to zero
-      const double f_n = std::max(0.0, k * depth + damping * depth_rate);
-      s.normal_force += f_n;
-      s.dissipation += (f_n - k * depth) * depth_rate;
-      Vec2 force = f_n * normal;
-      if (mu > 0.0 && qd) {
-        const Vec2 v_t = v_rel - normal.dot(v_rel) * normal;
-        const Vec2 f_t = -mu * f_n / std::max(v_t.norm(), v_reg) * v_t;
-        s.dissipation -= f_t.dot(v_t);
-        force += f_t;
-      }
+      const ContactForce law = contact_force(k, damping, depth, normal, qd ? &v_rel : nullptr, mu, v_reg);
+      s.normal_force += law.normal;
+      s.dissipation += law.dissipation;
+      const Vec2 force = law.force;
       if (g) {
         (*g)[x] += force.x();
         (*g)[x + 1] += force.y();

@@ -9,6 +9,8 @@
 //    velocities of the elastic impact, -2.5 and 0.5 m/s; momentum is kept to round-off.
 //  - A box strikes the corner of a free box off-centre (polygon against polygon): both turn,
 //    momentum and angular momentum are kept, the energy balance closes.
+//  - Two boxes crossed like a plus sign, no corner of either inside the other, are pushed apart
+//    the shallower way, each leaving with half the stored energy.
 //  - A step too large for the stiffness is refused before the run, naming the key; a rigid
 //    contact without stiffness, or of a body with itself, is refused naming the key.
 #include <gtest/gtest.h>
@@ -144,6 +146,47 @@ TEST(RigidContact, HeadOnDiscsExchangeTheMomentumOfAnElasticImpact) {
   for (const auto& row : s.rows) {
     EXPECT_NEAR(row[s.column("probe.a.vx")] + 3.0 * row[s.column("probe.b.vx")], -1.0, 1e-12) << row[0];
     EXPECT_LT(std::abs(row[s.column("energy_balance")]), 1e-3 * 6.5) << row[0];
+  }
+}
+
+TEST(RigidContact, BoxesCrossedLikeAPlusSignArePushedApartAlongTheShallowerWay) {
+  // a 200 x 20 mm box across a 20 x 60 mm box 5 mm above its middle: no corner of either lies
+  // inside the other. The separating axis test finds them overlapping by 35 mm upwards (45 mm
+  // downwards, 110 mm sideways): the tall box goes up, the long one down, no turning (the
+  // contact acts at the middle of the overlap, on the line through both centres)
+  const std::string text =
+      header(3e-5, 0.05) +
+      body("long", 1.0, 1.0 / 12.0 * (0.04 + 0.0004), 0.0, 0.0, 0.0, 0.0,
+           "{ type = \"box\", width = 0.2, height = 0.02 }") +
+      body("tall", 1.0, 1.0 / 12.0 * (0.0004 + 0.0036), 0.0, 0.005, 0.0, 0.0,
+           "{ type = \"box\", width = 0.02, height = 0.06 }") +
+      contact("long", "tall", 1e4, 1.0);
+  const Series s = run_scene("plus_sign", text);
+  ASSERT_GT(s.rows.size(), 10u);
+  const auto& first = s.rows.front();
+  const auto& last = s.rows.back();
+  EXPECT_EQ(first[s.column("contact_count")], 1.0);
+  EXPECT_EQ(last[s.column("contact_count")], 0.0);
+  // apart: the tall box's lower face above the long box's upper face, and moving away
+  const double gap = (last[s.column("probe.tall.y")] - 0.03) - (last[s.column("probe.long.y")] + 0.01);
+  std::printf("plus sign: gap at the end %.4f m, speeds %.4f and %.4f m/s\n", gap, last[s.column("probe.tall.vy")],
+              last[s.column("probe.long.vy")]);
+  EXPECT_GT(gap, 0.0);
+  EXPECT_GT(last[s.column("probe.tall.vy")], 0.0);
+  EXPECT_LT(last[s.column("probe.long.vy")], 0.0);
+  // the stored energy k d^2 / 2 = 6.1 J is the most they can take away (each at 2.47 m/s). Once
+  // the tall box's lower corners enter the long box, the corner test takes over from the
+  // separating axis and pushes the rest of the way (docs/contact.md): part of the energy stays
+  // behind, and they leave at about 2.0 m/s
+  const double stored = 0.5 * 1e4 * 0.035 * 0.035;
+  const double v_tall = last[s.column("probe.tall.vy")], v_long = last[s.column("probe.long.vy")];
+  const double kinetic = 0.5 * (v_tall * v_tall + v_long * v_long);
+  EXPECT_LT(kinetic, stored * (1.0 + 1e-3));
+  EXPECT_GT(kinetic, 0.5 * stored);
+  for (const auto& row : s.rows) {
+    EXPECT_NEAR(row[s.column("probe.tall.vy")] + row[s.column("probe.long.vy")], 0.0, 1e-12);
+    EXPECT_NEAR(row[s.column("probe.tall.vx")] + row[s.column("probe.long.vx")], 0.0, 1e-12);
+    EXPECT_NEAR(row[s.column("probe.tall.omega")], 0.0, 1e-9);
   }
 }
 

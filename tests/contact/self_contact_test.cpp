@@ -3,6 +3,7 @@
 // pair by pair as soon as they come closer than the contact distance, each pair pushed apart.
 #include <gtest/gtest.h>
 
+#include "contact/particle_contact.h"
 #include "scene/scene_loader.h"
 #include "solve/system_model.h"
 
@@ -71,6 +72,22 @@ TEST(SelfContact, CrackFacesRepelPairByPairOnceCloserThanTheContactDistance) {
     net += g[c];
   }
   EXPECT_NEAR(net, 0.0, 1e-9 * g.cwiseAbs().maxCoeff());
+}
+
+TEST(SelfContact, BondsCutAfterTheSearchMakeContactPairsWithoutANewSearch) {
+  // the intact plate squeezed: its Verlet list is searched once and holds the bonded pairs too
+  const auto model = plate(false);
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model->coordinate_count);
+  const auto& contact = dynamic_cast<ParticleContact&>(*model->contacts.at(0));
+  const Eigen::VectorXd q = squeezed(*model);
+  EXPECT_EQ(model->contacts.at(0)->totals(q, rest).active, 0);
+  EXPECT_EQ(contact.rebuilds(), 1);
+  // a knife along x = 0 breaks the bonds across it: at the next sum the ten pairs facing each
+  // other across the cut repel, from the same list (no particle has moved)
+  const FractureUpdate cut = model->flex_bodies.at(0)->cut_bonds(q, {}, Vec2(0.0, -0.01), Vec2(0.0, 0.01));
+  EXPECT_GT(cut.bonds_broken, 0);
+  EXPECT_EQ(model->contacts.at(0)->totals(q, rest).active, 10);
+  EXPECT_EQ(contact.rebuilds(), 1);
 }
 
 }  // namespace

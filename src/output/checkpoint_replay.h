@@ -32,6 +32,8 @@ class CheckpointReplay {
   std::string path(size_t index) const;
   const CheckpointFolder& folder() const { return folder_; }
   const SceneDef& scene() const { return scene_; }
+  // The model, holding the state shown last (for its info, settings and sample).
+  const Simulation& simulation() const { return *sim_; }
 
   // Puts state `index` in place and fills `out` from it. Throws CheckpointError naming the file
   // when the checkpoint cannot be read or does not fit the model.

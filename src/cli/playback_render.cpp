@@ -19,13 +19,14 @@ int render_checkpoint_folder(RunOptions options) {
   const std::string dir = options.scene_path;
   // a folder that cannot be replayed is bad input at the argument that names it
   auto refuse = [&](const std::string& why) { return InputError(flag_location("scene"), why); };
+  check_replay_flags(options);
   std::unique_ptr<CheckpointReplay> replay;
   try {
     replay = std::make_unique<CheckpointReplay>(dir);
   } catch (const CheckpointError& e) {
     throw refuse(std::string("cannot replay: ") + e.what());
   }
-  check_replay_options(options, replay->scene().name);
+  check_replay_outputs(options, replay->scene().name);
   if (!options.render && !options.snapshot_at) {
     throw refuse("a checkpoint folder ('" + dir + "') is replayed into frames: add --render, --frames D or --movie F");
   }

@@ -171,7 +171,7 @@ SceneDef load_run_scene(RunOptions& options) {
   return scene;
 }
 
-void check_replay_options(RunOptions& options, const std::string& scene_name) {
+void check_replay_flags(const RunOptions& options) {
   check_run_values(options);
   // what shapes a simulation has no meaning for states already computed
   const std::pair<bool, const char*> simulating[] = {
@@ -185,6 +185,9 @@ void check_replay_options(RunOptions& options, const std::string& scene_name) {
                      "'): it is replayed as written, one frame per state, without simulating");
     }
   }
+}
+
+void check_replay_outputs(RunOptions& options, const std::string& scene_name) {
   if (options.out_dir.empty()) options.out_dir = "out/" + safe_folder_name(scene_name) + "-replay";
   check_writable_folder("--out", options.out_dir);
   if (!options.frames_dir.empty()) check_writable_folder("--frames", options.frames_dir);

@@ -14,6 +14,7 @@
 #include "app/gui_app.h"
 #include "app/gui_script.h"
 #include "app/key_presses.h"
+#include "app/playback_source.h"
 #include "app/sim_worker.h"
 #include "core/error.h"
 #include "core/resources.h"
@@ -35,10 +36,17 @@ int run_gui(const GuiOptions& options) {
   // the script and the first scene are checked before any window opens
   std::vector<ScriptAction> script;
   std::unique_ptr<SimWorker> worker;
+  std::unique_ptr<PlaybackSource> playback;
   try {
     if (!options.script.empty()) script = parse_script(options.script);
-    worker = std::make_unique<SimWorker>(simulation_model_factory(), options.scene_path, options.overrides,
-                                         log);
+    if (!options.playback_dir.empty()) {
+      // a checkpoint folder: the same window on a replay that steps nothing
+      playback = std::make_unique<PlaybackSource>(options.playback_dir);
+      worker = std::make_unique<SimWorker>(playback->factory(), playback->scene_path(), options.overrides, log);
+    } else {
+      worker = std::make_unique<SimWorker>(simulation_model_factory(), options.scene_path, options.overrides,
+                                           log);
+    }
   } catch (const InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return kExitBadInput;
@@ -88,11 +96,12 @@ int run_gui(const GuiOptions& options) {
   int code = kExitOk;
   try {
     GuiApp app(options, std::move(script), log, *worker, window, find_resource_root());
+    app.attach_playback(playback.get());
     // a scene whose whole run is under a second of simulated time (a fracture in microseconds)
     // starts in slow motion, so that it plays over about ten seconds; longer ones at 1x
     const double end = worker->status().end_time;
     const double speed = end > 0.0 && end < 1.0 ? end / 10.0 : 1.0;
-    worker->start(true, speed);
+    worker->start(!playback, speed);
     code = app.run();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -19,6 +19,8 @@ struct GuiOptions {
   int samples = -1;
   // Deformation magnification K of the flexible bodies (0: undeformed); negative: automatic.
   double deform = -1.0;
+  // A checkpoint folder to replay instead of a scene (`periflex play DIR`, app/playback_source.h).
+  std::string playback_dir;
 };
 
 // Opens the window and runs until it is closed (or, with frames > 0, for that many frames).

@@ -1,4 +1,5 @@
 #include "app/gui_app.h"
+#include "app/playback_source.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -361,6 +362,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
   for (const KeyPress& k : take_key_presses()) {
     if (io.WantCaptureKeyboard) continue;
     const bool ctrl = (k.mods & GLFW_MOD_CONTROL) != 0;
+    if (playback_ && playback_->on_key(k.key, worker_)) continue;
     if (k.key == GLFW_KEY_RIGHT) send(SimCommand::make(Kind::kStep, "key"));  // repeats when held
     if (k.repeat) continue;
     if (k.key == GLFW_KEY_SPACE) send(SimCommand::make(Kind::kToggleRun, "key"));
@@ -657,6 +659,7 @@ int GuiApp::run() {
       draw_mouse_spring(snap, fb_width, fb_height);
       draw_knife(fb_width, fb_height);
       draw_panels(fb_width, fb_height);
+      if (playback_) playback_->draw(worker_, dump_, fb_width, fb_height, kPanelWidth);
       if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
       draw_performance(fb_width);
       plot_window(fb_width, fb_height);

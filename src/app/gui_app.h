@@ -27,6 +27,8 @@ struct GLFWwindow;
 
 namespace periflex {
 
+class PlaybackSource;
+
 // The deformation slider's largest factor (render/deformation.h: the automatic one stops at 1000).
 constexpr double kMaxDeformSlider = 1000.0;
 
@@ -38,6 +40,8 @@ class GuiApp {
   // Runs the frame loop until the window closes, the script quits or --frames are drawn.
   // Returns the exit code of the visual part (0, or 1 for a failed expectation or capture).
   int run();
+  // A replay's controls (`periflex play`): its timeline window and the Left key.
+  void attach_playback(PlaybackSource* playback) { playback_ = playback; }
 
  private:
   // one frame
@@ -103,6 +107,7 @@ class GuiApp {
   std::vector<std::string> list_scenes() const;
 
   GuiOptions options_;
+  PlaybackSource* playback_ = nullptr;
   std::vector<ScriptAction> script_;
   EventLog& log_;
   SimWorker& worker_;

@@ -7,6 +7,7 @@
 
 #include "cli/scene_setup.h"
 #include "core/error.h"
+#include "output/run_record.h"
 
 namespace periflex {
 
@@ -14,16 +15,7 @@ uint64_t run_scene_hash(const RunOptions& o) {
   std::ifstream in(o.scene_path, std::ios::binary);
   if (!in) throw InputError({o.scene_path, 0, 0, ""}, "cannot read the scene file");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  // each part with a separator no scene text or flag value contains
-  uint64_t h = text_hash(text);
-  for (const std::string& set : o.overrides) h = text_hash("\x1f--set " + set, h);
-  if (o.dt) {
-    char number[40];
-    std::snprintf(number, sizeof number, "%.17g", *o.dt);
-    h = text_hash(std::string("\x1f--dt ") + number, h);
-  }
-  if (o.integrator) h = text_hash("\x1f--integrator " + *o.integrator, h);
-  return h;
+  return scene_identity_hash(text, o.overrides, o.dt, o.integrator);
 }
 
 std::string checkpoint_file_name(long index, double time) {

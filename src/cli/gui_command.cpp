@@ -91,6 +91,7 @@ int gui_command(const GuiCommandOptions& options) {
   gui.screenshot = options.screenshot;
   gui.script = options.script;
   gui.samples = options.samples;
+  gui.playback_dir = options.playback_dir;
   if (!parse_deform(options.deform, gui.deform)) {
     throw InputError({"command line", 0, 0, "--deform"}, parse_deform_check(options.deform));
   }

@@ -4,6 +4,7 @@
 //   periflex run SCENE [...]       headless run: series.csv, summary.json, frames, movies
 //   periflex check SCENE           validate and describe a scene
 //   periflex gui [SCENE] [...]     interactive visualiser
+//   periflex play DIR [...]        the visualiser on a checkpoint folder, without simulating
 //   periflex study STUDY.toml      error against run time across integrators and steps
 //   periflex sweep SWEEP.toml      a grid of scene values, run locally or as a job list
 //   periflex stability [--quick]   the stiff and extreme cases, with a table of outcomes
@@ -114,6 +115,18 @@ int run_main(int argc, char** argv) {
       ->check(CLI::Validator(parse_window_size_check, "WxH"));
   add_deform_option(gui_cmd, gui.deform);
 
+  GuiCommandOptions play;
+  auto* play_cmd = app.add_subcommand("play", "Open the visualiser on a checkpoint folder and move through its states");
+  play_cmd->add_option("folder", play.playback_dir, "Checkpoint folder (written by run --checkpoint-every)")->required();
+  play_cmd->add_option("--frames", play.frames, "Draw this many frames, then exit (for scripted runs)")
+      ->check(CLI::NonNegativeNumber);
+  play_cmd->add_option("--screenshot", play.screenshot, "Write the last frame to this PNG");
+  play_cmd->add_option("--script", play.script, "Timed actions, e.g. 'step@2; step@3'");
+  play_cmd->add_option("--samples", play.samples, "Multisamples of the window, 1 = off")->check(CLI::Range(1, 16));
+  play_cmd->add_option("--size", play.size, "Window size WxH in screen pixels (default 1280x800, at least 640x480)")
+      ->check(CLI::Validator(parse_window_size_check, "WxH"));
+  add_deform_option(play_cmd, play.deform);
+
   StudyOptions study;
   auto* study_cmd = add_study_subcommand(app, study);
   SweepOptions sweep;
@@ -135,6 +148,7 @@ int run_main(int argc, char** argv) {
   if (*study_cmd) return study_command(study);
   if (*sweep_cmd) return sweep_command(sweep);
   if (*stability_cmd) return stability_command(stability);
+  if (*play_cmd) return gui_command(play);
   if (*gui_cmd) {
     if (gui.scene_path.empty()) gui.scene_path = default_scene_path();
     return gui_command(gui);

@@ -15,6 +15,7 @@
 #include "cli/checkpoint_options.h"
 #include "cli/frame_sink.h"
 #include "cli/interrupt.h"
+#include "cli/playback_render.h"
 #include "cli/progress_bar.h"
 #include "cli/run_option_checks.h"
 #include "cli/scene_setup.h"
@@ -23,6 +24,7 @@
 #include "core/sim_time.h"
 #include "output/atomic_file.h"
 #include "output/checkpoint_file.h"
+#include "output/run_record.h"
 #include "output/series_writer.h"
 #include "output/summary_writer.h"
 #include "output/vtk_series.h"
@@ -117,6 +119,8 @@ int run_command(const RunOptions& requested) {
     throw InputError({"command line", 0, 0, "--snapshot-at"}, "needs --screenshot FILE to say where the frame goes");
   // asking for frames or a movie is asking for rendering
   if (!options.frames_dir.empty() || !options.movie_path.empty()) options.render = true;
+  // a checkpoint folder instead of a scene: its states drawn, nothing simulated
+  if (std::error_code ec; std::filesystem::is_directory(options.scene_path, ec)) return render_checkpoint_folder(options);
   SceneDef scene = load_run_scene(options);  // every flag, the scene's budget and the output paths
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
@@ -138,6 +142,17 @@ int run_command(const RunOptions& requested) {
   std::optional<SimState> restart;
   CheckpointHeader restart_header;
   if (!options.restart_path.empty()) restart = load_restart(options, scene_hash, restart_header);
+  // the folder names its scene, so it can be replayed on its own (`periflex play DIR`)
+  if (checkpointing) {
+    RunRecord record;
+    record.scene_path = std::filesystem::absolute(options.scene_path).lexically_normal().string();
+    record.overrides = options.overrides;
+    record.dt = options.dt;
+    record.integrator = options.integrator;
+    record.scene_hash = scene_hash;
+    record.program_version = PERIFLEX_VERSION;
+    write_run_record(options.checkpoint_dir, record);
+  }
 
   RunSummary summary;
   summary.scene = scene.name;

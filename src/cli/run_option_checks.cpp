@@ -171,6 +171,30 @@ SceneDef load_run_scene(RunOptions& options) {
   return scene;
 }
 
+void check_replay_flags(const RunOptions& options) {
+  check_run_values(options);
+  // what shapes a simulation has no meaning for states already computed
+  const std::pair<bool, const char*> simulating[] = {
+      {!options.overrides.empty(), "--set"},       {options.until.has_value(), "--until"},
+      {options.dt.has_value(), "--dt"},            {options.integrator.has_value(), "--integrator"},
+      {options.checkpoint_every != 0.0, "--checkpoint-every"}, {!options.restart_path.empty(), "--restart"},
+      {options.vtk_every != 0, "--vtk-every"},     {options.frame_every != 0.0, "--frame-every"}};
+  for (const auto& [given, flag] : simulating) {
+    if (given) {
+      fail(flag, std::string("does not apply to a checkpoint folder ('") + options.scene_path +
+                     "'): it is replayed as written, one frame per state, without simulating");
+    }
+  }
+}
+
+void check_replay_outputs(RunOptions& options, const std::string& scene_name) {
+  if (options.out_dir.empty()) options.out_dir = "out/" + safe_folder_name(scene_name) + "-replay";
+  check_writable_folder("--out", options.out_dir);
+  if (!options.frames_dir.empty()) check_writable_folder("--frames", options.frames_dir);
+  if (!options.movie_path.empty()) check_writable_file("--movie", options.movie_path);
+  if (!options.screenshot_path.empty()) check_writable_file("--screenshot", options.screenshot_path);
+}
+
 void check_gui_options(const GuiCommandOptions& options) {
   if (!options.screenshot.empty()) check_writable_file("--screenshot", options.screenshot);
   if (!parse_deform_check(options.deform).empty()) fail("--deform", parse_deform_check(options.deform));

@@ -23,6 +23,14 @@ std::vector<std::string> colormap_names();
 // with out/<safe scene name> when it is empty and checks every output path. Throws InputError.
 SceneDef load_run_scene(RunOptions& options);
 
+// Checks the options of `run` on a checkpoint folder (cli/playback_render.h), before the folder
+// is read: the rendering ones as for a scene, and none of those that shape a simulation. Throws
+// InputError naming the flag.
+void check_replay_flags(const RunOptions& options);
+// Then the output paths; fills options.out_dir with out/<safe scene name>-replay when it is
+// empty. Throws InputError naming the flag.
+void check_replay_outputs(RunOptions& options, const std::string& scene_name);
+
 // Checks the options of `gui` and that its scene loads within its budget. Throws InputError.
 void check_gui_options(const GuiCommandOptions& options);
 

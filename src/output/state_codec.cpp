@@ -24,6 +24,29 @@ uint64_t bits_of(double v) {
 uint64_t zigzag(uint64_t v) { return (v << 1) ^ static_cast<uint64_t>(static_cast<int64_t>(v) >> 63); }
 uint64_t unzigzag(uint64_t z) { return (z >> 1) ^ (~(z & 1) + 1); }
 
+// The prediction of value i from the ones before it (see Writer::put_planed).
+uint64_t predicted(const double* data, size_t i, size_t row) {
+  if (i < kStride) return 0;
+  const uint64_t previous = bits_of(data[i - kStride]);
+  if (row <= kStride || i < row + kStride) return previous;
+  return previous + bits_of(data[i - row]) - bits_of(data[i - row - kStride]);
+}
+
+// The number of values per row of a particle grid in q (x, y interleaved, row by row): the
+// distance between two places where x falls back (a new row begins); 0 when there is none. Only
+// the size of the file depends on it, never what is read back.
+size_t grid_row(const Eigen::VectorXd& q) {
+  const size_t n = static_cast<size_t>(q.size());
+  for (size_t parity = 0; parity < kStride; ++parity) {
+    size_t wraps[3] = {0, 0, 0};
+    int found = 0;
+    for (size_t i = parity + kStride; i < n && found < 3; i += kStride)
+      if (q[static_cast<Eigen::Index>(i)] < q[static_cast<Eigen::Index>(i - kStride)]) wraps[found++] = i;
+    if (found == 3 && wraps[2] - wraps[1] > kStride) return wraps[2] - wraps[1];
+  }
+  return 0;
+}
+
 // Appends fields; arrays carry their length first.
 struct Writer {
   std::vector<uint8_t> out;
@@ -40,21 +63,30 @@ struct Writer {
   }
   template <typename T>
   void put_vector(const std::vector<T>& v) { put_array(v.data(), v.size()); }
-  // doubles as the difference of their bit patterns (as integers) from the value two before
-  // (the same coordinate of the previous particle), zigzag-coded so small differences of either
-  // sign have zero high bytes, then byte-planed: plane b holds byte b of every value. A smooth
-  // field or an evenly spaced grid then gives runs of equal bytes in the high planes.
-  void put_planed(const double* data, size_t count) {
+  // Doubles as the difference of their bit patterns (as integers) from a prediction, zigzag-coded
+  // so small differences of either sign have zero high bytes, then byte-planed: plane b holds
+  // byte b of every value. The prediction is the value two before (the same coordinate of the
+  // previous particle); in arrays laid out like the positions of a particle grid (`row` values
+  // per grid row, 0: none), the previous particle's value plus the change between the same two
+  // particles one row before (a plane through three neighbours): a smooth field then leaves
+  // differences of a few low bytes. Exact in both directions (integer arithmetic, wrapping).
+  void put_planed(const double* data, size_t count, size_t row = 0) {
     put<uint64_t>(count);
+    put<uint64_t>(row);
     const size_t at = out.size();
     out.resize(at + 8 * count);
     uint8_t* planes = out.data() + at;
     for (size_t i = 0; i < count; ++i) {
-      const uint64_t coded = zigzag(bits_of(data[i]) - (i >= kStride ? bits_of(data[i - kStride]) : 0));
+      const uint64_t coded = zigzag(bits_of(data[i]) - predicted(data, i, row));
       for (size_t b = 0; b < 8; ++b) planes[b * count + i] = static_cast<uint8_t>(coded >> (8 * b));
     }
   }
-  void put_vector(const Eigen::VectorXd& v) { put_planed(v.data(), static_cast<size_t>(v.size())); }
+  // particle arrays (the size of q) with the grid's row, others without
+  size_t row_of(size_t count) const { return count == row_count ? grid_row : 0; }
+  size_t row_count = 0, grid_row = 0;
+  void put_vector(const Eigen::VectorXd& v) {
+    put_planed(v.data(), static_cast<size_t>(v.size()), row_of(static_cast<size_t>(v.size())));
+  }
   void put_string(const std::string& s) { put_array(s.data(), s.size()); }
 };
 
@@ -89,12 +121,15 @@ struct Reader {
   }
   void get_vector(Eigen::VectorXd& v, const char* what) {
     const size_t n = count(8, what);
+    const uint64_t row = get<uint64_t>(what);
+    if (row > n) throw std::runtime_error(std::string("an impossible grid row in ") + what);
+    need(8 * n, what);
     v.resize(static_cast<Eigen::Index>(n));
     double* data = v.data();
     for (size_t i = 0; i < n; ++i) {
       uint64_t coded = 0;
       for (size_t b = 0; b < 8; ++b) coded |= static_cast<uint64_t>(at[b * n + i]) << (8 * b);
-      const uint64_t bits = unzigzag(coded) + (i >= kStride ? bits_of(data[i - kStride]) : 0);
+      const uint64_t bits = unzigzag(coded) + predicted(data, i, static_cast<size_t>(row));
       std::memcpy(data + i, &bits, 8);
     }
     at += 8 * n;
@@ -111,6 +146,8 @@ struct Reader {
 
 std::vector<uint8_t> encode_state(const SimState& s) {
   Writer w;
+  w.row_count = static_cast<size_t>(s.q.size());
+  w.grid_row = grid_row(s.q);
   // clock and step count
   w.put(s.time);
   w.put<int64_t>(s.steps);

@@ -1,9 +1,10 @@
 // A SimState as bytes and back, for checkpoint files (output/checkpoint_file.h). Little-endian
 // fixed-width fields in the order of docs/state.md; the long arrays of doubles (coordinates,
-// velocities, caches) are stored as integer differences of their bit patterns from the same
-// coordinate of the previous particle, zigzag-coded and byte-planed (every value's first byte,
-// then every second byte, ...): an evenly spaced grid and a smooth velocity field become runs of
-// equal bytes in the high planes, which deflate packs.
+// velocities, caches) are stored as integer differences of their bit patterns from a prediction
+// (the same coordinate of the previous particle, plus the change one grid row before where the
+// particles form a grid), zigzag-coded and byte-planed (every value's first byte, then every
+// second byte, ...): an evenly spaced grid and a smooth field become runs of zero bytes in the
+// high planes, which deflate packs.
 #pragma once
 
 #include <cstdint>

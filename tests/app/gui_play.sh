@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# `periflex play DIR` driven as a person drives it: a checkpoint folder written by `periflex run`
+# (the notched plate, checkpoints every 1.37e-4 s, which dt does not divide), opened in the
+# window under Xvfb, real key presses through xdotool. Right shows the next checkpoint, Left the
+# one before, S writes the picture of the state shown (its name carries the time shown); the
+# window reads its state through PERIFLEX_GUI_WIDGETS (src/app/widget_dump.h). A folder that
+# cannot be replayed exits 2 before any window opens.
+#
+# Usage (inside an X display, e.g. under xvfb-run): gui_play.sh PERIFLEX SCENES_DIR OUT_DIR
+set -uo pipefail
+
+periflex=$1 scenes=$2 out=$3
+work="$out/play"
+rm -rf "$work"
+mkdir -p "$work"
+widgets="$work/widgets.txt"
+log="$work/stderr.txt"
+pid=""
+
+fail() {
+  echo "FAIL (play): $*" >&2
+  [[ -f "$widgets" ]] && sed 's/^/  widgets: /' "$widgets" >&2
+  [[ -f "$log" ]] && tail -n 20 "$log" | sed 's/^/  log: /' >&2
+  if [[ -n "$pid" ]] && kill -0 "$pid" 2>/dev/null; then kill -9 "$pid" 2>/dev/null; fi
+  exit 1
+}
+state() { awk -v k="$1" '$1 == "state" && $2 == k { print $3 }' "$widgets" 2>/dev/null; }
+wait_until() {
+  local seconds=$1 message=$2
+  shift 2
+  local end=$((SECONDS + seconds))
+  until eval "$*"; do
+    kill -0 "$pid" 2>/dev/null || fail "the program ended early while waiting for: $message"
+    ((SECONDS < end)) || fail "timed out after ${seconds}s waiting for: $message"
+    sleep 0.1
+  done
+}
+# a quick tap of 20 ms, shorter than a frame may take
+tap() {
+  xdotool keydown "$1" && sleep 0.02 && xdotool keyup "$1" || fail "xdotool key $1"
+  sleep 0.3
+}
+# the time the window shows equals T (as the widget dump prints it, 9 digits)
+shows() { awk -v a="$(state time)" -v b="$1" 'BEGIN { exit !(a != "" && (a - b) ^ 2 < 1e-24) }'; }
+
+# the run to replay
+"$periflex" run "$scenes/notched_plate.toml" --quiet --until 6e-4 --checkpoint-every 1.37e-4 --threads 1 \
+  --out "$work/run" >"$work/run.txt" 2>&1 || fail "the checkpointing run failed: $(cat "$work/run.txt")"
+folder="$work/run/checkpoints"
+
+# refused before a window opens: a folder without checkpoints
+mkdir -p "$work/empty" && cp "$folder/run.json" "$work/empty/"
+"$periflex" play "$work/empty" >"$work/empty.txt" 2>&1
+code=$?
+((code == 2)) || fail "an empty folder: exit $code, expected 2: $(cat "$work/empty.txt")"
+grep -q "holds no checkpoint" "$work/empty.txt" || fail "an empty folder: $(cat "$work/empty.txt")"
+
+cd "$work" || fail "cd $work"
+PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" play "$folder" 2>"$log" &
+pid=$!
+wait_until 60 "the window's first frame" '[[ -n "$(state playback_count)" ]]'
+window=$(xdotool search --sync --pid "$pid" 2>/dev/null | head -n 1)
+[[ -n "$window" ]] || fail "no window of process $pid"
+xdotool windowfocus --sync "$window" 2>/dev/null || xdotool windowfocus "$window" || true
+xdotool mousemove --window "$window" 1200 100
+
+# the start and the four checkpoints; the window opens paused on the start
+[[ "$(state playback_count)" == 5 ]] || fail "$(state playback_count) states listed, expected 5"
+[[ "$(state running)" == 0 ]] || fail "the replay runs on its own"
+shows 0 || fail "opened at t = $(state time), not at the start"
+tap s
+wait_until 10 "the screenshot of the start" '[[ -s periflex_notched_plate_t0.png ]]'
+
+tap Right
+wait_until 10 "Right to show the first checkpoint (t = 1.37e-4)" 'shows 1.37e-4'
+[[ "$(state playback_index)" == 1 ]] || fail "index $(state playback_index) after Right"
+tap s
+wait_until 10 "the screenshot of t = 1.37e-4" '[[ -s periflex_notched_plate_t0.000137.png ]]'
+cmp -s periflex_notched_plate_t0.png periflex_notched_plate_t0.000137.png &&
+  fail "the pictures of t = 0 and t = 1.37e-4 are the same"
+
+tap Right
+tap Right
+wait_until 10 "two more Right presses (t = 4.11e-4)" 'shows 4.11e-4'
+tap Left
+wait_until 10 "Left to go back one checkpoint (t = 2.74e-4)" 'shows 2.74e-4'
+[[ "$(state playback_index)" == 2 ]] || fail "index $(state playback_index) after Left"
+tap Right
+tap Right
+tap Right
+wait_until 10 "Right past the last to stay on it (t = 5.48e-4)" 'shows 5.48e-4'
+[[ "$(state running)" == 0 ]] || fail "stepping started the replay running"
+
+# Ctrl+Q, then the program ends on its own with exit code 0
+xdotool keydown ctrl q && sleep 0.1
+xdotool keyup q ctrl 2>/dev/null
+end=$((SECONDS + 30))
+while kill -0 "$pid" 2>/dev/null; do
+  ((SECONDS < end)) || fail "the program did not exit within 30 s of Ctrl+Q"
+  sleep 0.1
+done
+wait "$pid"
+code=$?
+pid=""
+((code == 0)) || fail "exit code $code"
+echo "play: ok"

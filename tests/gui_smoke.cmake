@@ -94,13 +94,14 @@ if(TARGET periflex_app AND PERIFLEX_XVFB_RUN AND PERIFLEX_SANITIZE STREQUAL "thr
   gui_input_test(record_mp4 ${gui_tsan_env})
 elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
 
-  # one picture per shipped scene, then the checker on it
+  # one picture per shipped scene, then the checker on it (the time limit catches a frozen window;
+  # the largest scenes take a minute to set up and draw 40 frames on a loaded two-core machine)
   file(GLOB gui_scenes CONFIGURE_DEPENDS "${PROJECT_SOURCE_DIR}/scenes/*.toml")
   foreach(scene IN LISTS gui_scenes)
     get_filename_component(name "${scene}" NAME_WE)
     add_test(NAME gui_smoke_${name}
              COMMAND ${gui_xvfb} ${gui_program} "${scene}" --frames 40 --screenshot "${gui_out}/${name}.png")
-    set_tests_properties(gui_smoke_${name} PROPERTIES LABELS gui TIMEOUT 60 RESOURCE_LOCK xvfb
+    set_tests_properties(gui_smoke_${name} PROPERTIES LABELS gui TIMEOUT 180 RESOURCE_LOCK xvfb
                          FIXTURES_SETUP gui_picture_${name})
     add_test(NAME gui_smoke_${name}_picture COMMAND gui_png_check "${gui_out}/${name}.png")
     set_tests_properties(gui_smoke_${name}_picture PROPERTIES LABELS gui

@@ -98,8 +98,8 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
       __m512d xj, yj;
       load_points<kOffsets>(bonds, pos, b, last - b, i, xj, yj);
       const __m512d dx = _mm512_sub_pd(xj, xi), dy = _mm512_sub_pd(yj, yi);
-      const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
-      const __m512d len = _mm512_mul_pd(r2, reciprocal_length(r2));
+      // |y| by the square root unit, which runs beside the multiply-add units (masked lanes: 0)
+      const __m512d len = _mm512_sqrt_pd(_mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
       const __m512d x0 = _mm512_permutex2var_pd(t.length_lo, k.cls, t.length_hi);
       // w |xi| (|y| - |xi|)
       acc = _mm512_fmadd_pd(_mm512_mul_pd(k.w, x0), _mm512_sub_pd(len, x0), acc);
@@ -174,8 +174,8 @@ PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, cons
       const Neighbors nb = load_neighbors<kOffsets>(bonds, rec, b, last - b, i);
       const __m512d dx = _mm512_sub_pd(nb.x, xi), dy = _mm512_sub_pd(nb.y, yi);
       const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
-      const __m512d inv_len = reciprocal_length(r2);
-      const __m512d len = _mm512_mul_pd(r2, inv_len);
+      const __m512d len = _mm512_sqrt_pd(r2);
+      const __m512d inv_len = _mm512_div_pd(one, len);
       const __m512d x0 = _mm512_permutex2var_pd(t.length_lo, k.cls, t.length_hi);
       const __m512d aj = _mm512_add_pd(ai, nb.a), bj = _mm512_add_pd(bi, nb.b);
       // w ((a_i + a_j) |xi| + (b_i + b_j) (|y| - |xi|)) / |y|

@@ -14,8 +14,9 @@ namespace {
 #define PERIFLEX_LPS_AVX512 __attribute__((target("avx512f,avx512bw,avx512vl,avx512dq,fma")))
 
 // |y| comes from the square root and 1/|y| from the division, which run on a unit of their own beside
-// the multiply-add units the rest of a block keeps busy: on this machine the two loops ran 1.10-1.16x
-// faster so than with the hardware estimate of 1/|y| refined by two Newton steps (docs/peridynamics.md).
+// the multiply-add units the rest of a block keeps busy, instead of the hardware estimate of 1/|y|
+// refined by two Newton steps (eight multiply-adds a vector). With the 256-bit row tails below, the
+// loops ran 1.11-1.15x faster per bond (docs/peridynamics.md, state-based speed).
 
 // |xi| and 1/|xi| per length class, each table in two registers (classes 0-7 and 8-15)
 struct ClassTables {

@@ -77,6 +77,23 @@ PERIFLEX_LPS_AVX512 inline void load_points(const BondStore& bonds, const double
   y = _mm512_permutex2var_pd(lo, _mm512_setr_epi64(1, 3, 5, 7, 9, 11, 13, 15), hi);
 }
 
+// A row's last block of at most four bonds [b, b + left), left in 1..4: as Block, the weights in 256
+// bits; the classes stay in a 512-bit register for the class-table permute (upper lanes unused).
+struct TailBlock {
+  __mmask8 mask;
+  __m512i cls;
+  __m256d w;
+};
+
+PERIFLEX_LPS_AVX512 inline TailBlock load_tail(const BondStore& bonds, int64_t b, int64_t left) {
+  TailBlock k;
+  k.mask = __mmask8((1u << left) - 1u);
+  const __m128i bytes = _mm_maskz_loadu_epi8(__mmask16(k.mask), bonds.length_class.data() + b);
+  k.cls = _mm512_castsi256_si512(_mm256_cvtepu8_epi64(bytes));
+  k.w = _mm256_cvtps_pd(_mm_maskz_loadu_ps(k.mask, bonds.stiffness.data() + b));
+  return k;
+}
+
 // sum of the four lanes
 PERIFLEX_LPS_AVX512 inline double lane_sum(__m256d v) {
   const __m128d h = _mm_add_pd(_mm256_castpd256_pd128(v), _mm256_extractf128_pd(v, 1));
@@ -95,10 +112,9 @@ template <bool kTrack, bool kOffsets>
 PERIFLEX_LPS_AVX512 inline void extension_tail(const BondStore& bonds, const double* pos, const ClassTables& t,
                                                int64_t b, int64_t last, int i, __m256d& acc, __m256d& top) {
   const int64_t left = last - b;
-  const __mmask8 mask = __mmask8((1u << left) - 1u);
-  const __m512i cls =
-      _mm512_castsi256_si512(_mm256_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(mask), bonds.length_class.data() + b)));
-  const __m256d w = _mm256_cvtps_pd(_mm_maskz_loadu_ps(mask, bonds.stiffness.data() + b));
+  const TailBlock tail = load_tail(bonds, b, left);
+  const __m512i cls = tail.cls;
+  const __m256d w = tail.w;
   const __m256d x0 = _mm512_castpd512_pd256(_mm512_permutex2var_pd(t.length_lo, cls, t.length_hi));
   int j[4];
   for (int k = 0; k < 4; ++k) j[k] = lane_neighbor<kOffsets>(bonds, b, left, k, i);
@@ -204,19 +220,20 @@ template <bool kOffsets>
 PERIFLEX_LPS_AVX512 inline void force_tail(const BondStore& bonds, const double* rec, const ClassTables& t, int64_t b,
                                            int64_t last, int i, __m256d& fx, __m256d& fy) {
   const int64_t left = last - b;
-  const __mmask8 mask = __mmask8((1u << left) - 1u);
-  const __m512i cls = _mm512_castsi256_si512(_mm256_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(mask), bonds.length_class.data() + b)));
-  const __m256d w = _mm256_cvtps_pd(_mm_maskz_loadu_ps(mask, bonds.stiffness.data() + b));
+  const TailBlock tail = load_tail(bonds, b, left);
+  const __mmask8 mask = tail.mask;
+  const __m512i cls = tail.cls;
+  const __m256d w = tail.w;
   const __m256d x0 = _mm512_castpd512_pd256(_mm512_permutex2var_pd(t.length_lo, cls, t.length_hi));
   int j[4];
   for (int k = 0; k < 4; ++k) j[k] = lane_neighbor<kOffsets>(bonds, b, left, k, i);
   // four records [x y a b] transposed to X, Y, A, B
-  const __m256d r0 = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[0]));
-  const __m256d r1 = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[1]));
-  const __m256d r2_ = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[2]));
-  const __m256d r3 = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[3]));
-  const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);    // [x0 x1 a0 a1], [y0 y1 b0 b1]
-  const __m256d t2 = _mm256_unpacklo_pd(r2_, r3), t3 = _mm256_unpackhi_pd(r2_, r3);  // [x2 x3 a2 a3], [y2 y3 b2 b3]
+  const __m256d q0 = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[0]));
+  const __m256d q1 = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[1]));
+  const __m256d q2 = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[2]));
+  const __m256d q3 = _mm256_loadu_pd(rec + 4 * static_cast<int64_t>(j[3]));
+  const __m256d t0 = _mm256_unpacklo_pd(q0, q1), t1 = _mm256_unpackhi_pd(q0, q1);  // [x0 x1 a0 a1], [y0 y1 b0 b1]
+  const __m256d t2 = _mm256_unpacklo_pd(q2, q3), t3 = _mm256_unpackhi_pd(q2, q3);  // [x2 x3 a2 a3], [y2 y3 b2 b3]
   const double* o = rec + 4 * static_cast<int64_t>(i);
   const __m256d one = _mm256_set1_pd(1.0);
   const __m256d dx = _mm256_sub_pd(_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_set1_pd(o[0]));

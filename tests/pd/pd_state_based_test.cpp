@@ -86,6 +86,52 @@ TEST(PdStateBased, WideAndCompiledLoopsAgree) {
   EXPECT_GT(compiled.cwiseAbs().maxCoeff(), 0.0);
 }
 
+// The row loops also leave each particle's largest stretch over its intact bonds, which the fracture
+// update breaks bonds by. The AVX-512 loops take a row's last four or fewer bonds in 256-bit
+// vectors of their own; the maxima and forces must match the compiled loops' to round-off on a
+// notched plate (rows of every length, bonds cut by the notch at weight 0) stretched in y with
+// random displacements on top, so that the largest stretch of many rows lies in a row's tail.
+TEST(PdStateBased, WideAndCompiledLoopsFindTheSameLargestStretch) {
+  FlexBodyDef def = steel_strip(0.02, 0.012, 1e-3, true, 0.3, false);
+  def.notches.push_back({Vec2(0.0, -0.007), Vec2(0.0, 0.0)});
+  auto body = PdBody::build(def, 0);
+  const BondStore& bonds = body->bonds();
+  StateBasedModel model;
+  model.volume = body->volumes().at(0);
+  model.kappa = 1e11;
+  model.mu = 7e10;
+  update_weighted_volumes(bonds, model);
+  Eigen::VectorXd q = reference_q(*body);
+  std::srand(5);
+  const Eigen::VectorXd noise = Eigen::VectorXd::Random(q.size());
+  for (int k = 0; k < q.size(); k += 2) {
+    q[k + 1] *= 1.002;
+    q[k] += 2e-6 * noise[k];
+    q[k + 1] += 2e-6 * noise[k + 1];
+  }
+  const int n = body->particle_count();
+  auto evaluate = [&](bool wide, std::vector<double>& most) {
+    set_state_based_avx512(wide);
+    Eigen::VectorXd force = Eigen::VectorXd::Zero(q.size());
+    most.assign(n, 0.0);
+    add_state_based_forces(bonds, model, q.data(), nullptr, 0.0, force.data(), most.data());
+    set_state_based_avx512(true);
+    return force;
+  };
+  std::vector<double> most_wide, most_compiled;
+  const Eigen::VectorXd wide = evaluate(true, most_wide);
+  const Eigen::VectorXd compiled = evaluate(false, most_compiled);
+  EXPECT_LT((wide - compiled).cwiseAbs().maxCoeff(), 1e-12 * compiled.cwiseAbs().maxCoeff());
+  double worst = 0.0, largest = 0.0;
+  for (int i = 0; i < n; ++i) {
+    worst = std::max(worst, std::abs(most_wide[i] - most_compiled[i]));
+    largest = std::max(largest, most_compiled[i]);
+  }
+  // stretches near 2e-3: round-off of |y| / |xi| - 1 is some 1e-16
+  EXPECT_GT(largest, 1e-3);
+  EXPECT_LT(worst, 1e-13);
+}
+
 // With bond damping the viscous pair forces remove exactly the power dissipation_power reports:
 // -F_damping . v, F_damping the forces with the velocities minus those without, at a random
 // deformation and random velocities. Tolerance 1e-9 relative (round-off of the force sums).

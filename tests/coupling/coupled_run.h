@@ -1,5 +1,5 @@
 // Small helpers shared by the coupled-scene tests: where the scenes are, running a simulation
-// with a callback, reading probe columns, and the complete elliptic integral for closed forms.
+// with a callback, reading probe columns.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -43,18 +43,6 @@ inline int probe_column(const Simulation& sim, const std::string& name, const st
     if (columns[k] == wanted) return static_cast<int>(k);
   }
   return -1;
-}
-
-// K(k) = int_0^{pi/2} dtheta / sqrt(1 - k^2 sin^2 theta) by the arithmetic-geometric mean,
-// K = pi / (2 AGM(1, sqrt(1 - k^2))).
-inline double complete_elliptic_k(double k) {
-  double a = 1.0, b = std::sqrt(1.0 - k * k);
-  for (int i = 0; i < 30 && std::abs(a - b) > 1e-16 * a; ++i) {
-    const double m = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = m;
-  }
-  return 3.14159265358979323846 / (2.0 * a);
 }
 
 // A number in scientific notation for RecordProperty (std::to_string rounds small values to 0).

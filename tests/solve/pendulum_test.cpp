@@ -1,46 +1,18 @@
 // The point-mass pendulum released from the horizontal against the exact solution:
 // period 4 sqrt(L/g) K(m), m = sin^2(theta0 / 2), and angle theta(t) = 2 asin(k sn(K - w t | m)),
-// with K and sn computed here by the arithmetic-geometric mean and the descending Landen
-// transformation (Abramowitz & Stegun 17.6 and 16.4).
+// with K and sn from the project's one elliptic-function oracle (src/study/elliptic.h, checked
+// against Boost.Math in tests/study/elliptic_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
 #include "solve/simulation.h"
+#include "study/elliptic.h"
 #include "test_scenes.h"
 
 namespace periflex {
 namespace {
-
-// Complete elliptic integral of the first kind K(m) = pi / (2 AGM(1, sqrt(1 - m))).
-double elliptic_k(double m) {
-  double a = 1.0, b = std::sqrt(1.0 - m);
-  // quadratic convergence: 30 rounds reach round-off for any m < 1
-  for (int it = 0; it < 30 && std::abs(a - b) > 1e-15 * a; ++it) {
-    const double an = 0.5 * (a + b);
-    b = std::sqrt(a * b);
-    a = an;
-  }
-  return kPi / (2.0 * a);
-}
-
-// Jacobi sn(u | m) by the descending Landen (AGM) scheme of A&S 16.4.
-double jacobi_sn(double u, double m) {
-  std::vector<double> a{1.0}, c{std::sqrt(m)};
-  double b = std::sqrt(1.0 - m);
-  for (int it = 0; it < 30 && std::abs(c.back()) > 1e-16; ++it) {
-    const double an = 0.5 * (a.back() + b);
-    const double cn = 0.5 * (a.back() - b);
-    b = std::sqrt(a.back() * b);
-    a.push_back(an);
-    c.push_back(cn);
-  }
-  const int n = static_cast<int>(a.size()) - 1;
-  double phi = std::ldexp(1.0, n) * a[n] * u;
-  for (int k = n; k >= 1; --k) phi = 0.5 * (phi + std::asin(c[k] / a[k] * std::sin(phi)));
-  return std::sin(phi);
-}
 
 constexpr double kLength = 1.0;
 constexpr double kG = 9.81;
@@ -49,17 +21,10 @@ constexpr double kTheta0 = kPi / 2;
 double exact_angle(double t) {
   const double m = std::pow(std::sin(kTheta0 / 2), 2);
   const double w = std::sqrt(kG / kLength);
-  return 2.0 * std::asin(std::sqrt(m) * jacobi_sn(elliptic_k(m) - w * t, m));
+  return 2.0 * std::asin(std::sqrt(m) * jacobi_elliptic(elliptic_k(m) - w * t, m).sn);
 }
 
 double exact_period() { return 4.0 * std::sqrt(kLength / kG) * elliptic_k(std::pow(std::sin(kTheta0 / 2), 2)); }
-
-TEST(EllipticHelpers, MatchPublishedValues) {
-  // K(1/2) = 1.854074677301372 (A&S table 17.1); sn(K | m) = 1; sn(u | 0) = sin u
-  EXPECT_NEAR(elliptic_k(0.5), 1.854074677301372, 1e-14);
-  EXPECT_NEAR(jacobi_sn(elliptic_k(0.3), 0.3), 1.0, 1e-14);
-  EXPECT_NEAR(jacobi_sn(0.7, 0.0), std::sin(0.7), 1e-14);
-}
 
 // Time at which x of the bob crosses zero downwards, found on the cubic Hermite interpolant of
 // (x, vx) between two samples (error O(dt^4)).

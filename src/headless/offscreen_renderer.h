@@ -1,6 +1,6 @@
 // Renders Snapshots to RGBA images without a window: an EGL context, a framebuffer object of the
-// requested size (multisampled, resolved before reading), the ordinary Renderer, and an ImGui
-// context of its own for the overlay. Use it on the thread that created it.
+// requested size (multisampled, resolved before reading) and the ordinary Renderer, which draws
+// the overlay too. Use it on the thread that created it.
 #pragma once
 
 #include <memory>

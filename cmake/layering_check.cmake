@@ -1,0 +1,30 @@
+# Run by the layering_includes test (tests/layering.cmake) with -DSOURCE_DIR=<src>: fails naming
+# every file that includes a header its layer must not.
+set(solver_layers core scene mbs pd coupling contact solve study stability output)
+set(gl_headers "GL/|GLFW/|EGL/|imgui")
+set(failures "")
+
+function(check_folder folder pattern)
+  file(GLOB_RECURSE files "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.h")
+  foreach(f IN LISTS files)
+    file(STRINGS "${f}" hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](${pattern})")
+    foreach(h IN LISTS hits)
+      string(STRIP "${h}" h)
+      list(APPEND failures "${f}: ${h}")
+    endforeach()
+  endforeach()
+  set(failures "${failures}" PARENT_SCOPE)
+endfunction()
+
+foreach(layer IN LISTS solver_layers)
+  check_folder(${layer} "${gl_headers}")
+endforeach()
+foreach(folder render headless)
+  check_folder(${folder} "imgui|backends/imgui")
+endforeach()
+
+if(failures)
+  list(JOIN failures "\n  " text)
+  message(FATAL_ERROR "headers a layer must not include:\n  ${text}")
+endif()
+message(STATUS "layering: no forbidden include")

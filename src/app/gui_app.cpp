@@ -21,7 +21,7 @@
 #include "core/error.h"
 #include "core/resources.h"
 #include "render/gl.h"
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex {
 

@@ -17,8 +17,8 @@
 #include "app/view_fit.h"
 #include "app/widget_dump.h"
 #include "render/camera.h"
-#include "render/frame_writer.h"
-#include "render/image.h"
+#include "io/frame_writer.h"
+#include "io/image.h"
 #include "render/renderer.h"
 #include "render/view.h"
 

@@ -9,7 +9,7 @@
 #include "app/gui_app.h"
 #include "app/view_fit.h"
 #include "render/gl.h"
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex {
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/resources.h"
-#include "render/image.h"
+#include "io/image.h"
 #include "render/renderer.h"
 
 namespace periflex {

@@ -10,7 +10,7 @@
 
 #include "render/deformation.h"
 #include "render/gl.h"
-#include "render/image.h"
+#include "io/image.h"
 #include "render/overlay_layout.h"
 #include "render/solid_mesh.h"
 

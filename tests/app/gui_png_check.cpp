@@ -33,7 +33,7 @@
 
 #include "app/view_fit.h"
 #include "core/resources.h"
-#include "render/image.h"
+#include "io/image.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"

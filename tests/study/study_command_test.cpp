@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "stability/child_process.h"
+#include "io/child_process.h"
 
 namespace periflex {
 namespace {

@@ -20,8 +20,8 @@
 
 #include "headless/offscreen_renderer.h"
 #include "headless/recorder.h"
-#include "render/frame_writer.h"
-#include "render/image.h"
+#include "io/frame_writer.h"
+#include "io/image.h"
 #include "render/view.h"
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"

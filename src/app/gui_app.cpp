@@ -22,7 +22,7 @@
 #include "core/error.h"
 #include "core/resources.h"
 #include "render/gl.h"
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex {
 
@@ -482,15 +482,6 @@ void GuiApp::capture_screenshot(const std::string& path, int fb_width, int fb_he
 // ---------------------------------------------------------------------------------------------
 // the frame loop
 
-void GuiApp::draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, int fb_height) {
-  // the overlay is laid out from the window's left edge; move what it adds beside the panels
-  ImDrawList* list = ImGui::GetForegroundDrawList();
-  const int first = list->VtxBuffer.Size;
-  renderer_->draw_overlay(snap, render_, fb_width - inset, fb_height);
-  const float shift = inset / std::max(1.0f, ImGui::GetIO().DisplayFramebufferScale.x);
-  for (int i = first; i < list->VtxBuffer.Size; ++i) list->VtxBuffer[i].pos.x += shift;
-}
-
 void GuiApp::draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height) {
   // what the mouse holds: a line from the held point to the pointer, the force at the pointer
   if (!grabbing_ || status_.mouse_stiffness <= 0.0) return;
@@ -625,8 +616,6 @@ int GuiApp::run() {
     pump_recording();
 
     {
-      // ImGui's current context is process-wide (see render/renderer.h)
-      ImGuiContextLock imgui_lock;
       ImGui_ImplOpenGL3_NewFrame();
       ImGui_ImplGlfw_NewFrame();
       ImGui::NewFrame();
@@ -651,7 +640,11 @@ int GuiApp::run() {
 
       // the picture; a drawing failure (say, a missing colour map) is shown, not fatal
       try {
-        if (snap.geometry) renderer_->draw(snap, camera_, render_, fb_width, fb_height);
+        if (snap.geometry) {
+          renderer_->draw(snap, camera_, render_, fb_width, fb_height);
+          // the overlay beside the panel column; the panels are drawn over the picture after it
+          renderer_->draw_overlay(snap, render_, fb_width, fb_height, kPanelWidth);
+        }
       } catch (const std::exception& e) {
         log_.add(std::string("drawing failed: ") + e.what() + "; back to the default colour map");
         render_.colormap = RenderSettings{}.colormap;
@@ -660,7 +653,6 @@ int GuiApp::run() {
       draw_knife(fb_width, fb_height);
       draw_panels(fb_width, fb_height);
       if (playback_) playback_->draw(worker_, dump_, fb_width, fb_height, kPanelWidth);
-      if (render_.show_overlay && snap.geometry) draw_overlay_beside(snap, kPanelWidth, fb_width, fb_height);
       draw_performance(fb_width);
       plot_window(fb_width, fb_height);
       inspect_particle(fb_width, fb_height);

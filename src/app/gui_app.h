@@ -10,7 +10,6 @@
 
 #include "app/event_log.h"
 #include "app/file_watch.h"
-#include "app/frame_overlay.h"
 #include "app/gui.h"
 #include "app/gui_script.h"
 #include "app/plot_history.h"
@@ -18,8 +17,8 @@
 #include "app/view_fit.h"
 #include "app/widget_dump.h"
 #include "render/camera.h"
-#include "render/frame_writer.h"
-#include "render/image.h"
+#include "io/frame_writer.h"
+#include "io/image.h"
 #include "render/renderer.h"
 #include "render/view.h"
 
@@ -53,7 +52,6 @@ class GuiApp {
   void grab(const ScriptAction& action);
   void handle_input(int fb_width, int fb_height);
   void draw_panels(int fb_width, int fb_height);
-  void draw_overlay_beside(const Snapshot& snap, int inset, int fb_width, int fb_height);
   void capture_screenshot(const std::string& path, int fb_width, int fb_height);
   void send(SimCommand command);
   void script_failure(const std::string& what);
@@ -97,8 +95,7 @@ class GuiApp {
   void pump_recording();
   void write_recorded_frame(const Snapshot& frame, FrameWriter& writer);
   // pictures without the panels, as recorded frames and screenshots show them
-  RgbaImage draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, FrameOverlay& overlay,
-                         int width, int height);
+  RgbaImage draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, int width, int height);
   static bool make_target(int width, int height, unsigned& fbo, unsigned& rbo);
   void write_picture(const std::string& path, int fb_width, int fb_height);
 
@@ -189,7 +186,6 @@ class GuiApp {
   double record_interval_ = 0.0;
   float record_fps_ = 30.0f;
   std::unique_ptr<FrameWriter> writer_;
-  std::unique_ptr<FrameOverlay> record_overlay_;   // recorded frames carry the window's overlay
   unsigned fbo_ = 0, color_rbo_ = 0;
   Camera record_camera_;
   int record_width_ = 0, record_height_ = 0;

@@ -10,7 +10,7 @@
 #include "app/gui_app.h"
 #include "app/view_fit.h"
 #include "output/series_row.h"
-#include "render/frame_writer.h"
+#include "io/frame_writer.h"
 
 namespace periflex {
 

@@ -13,7 +13,7 @@
 #include "app/plot_axes.h"
 #include "output/series_row.h"
 #include "render/gl.h"
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex {
 

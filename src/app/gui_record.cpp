@@ -9,7 +9,7 @@
 #include "app/gui_app.h"
 #include "app/view_fit.h"
 #include "render/gl.h"
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex {
 
@@ -53,22 +53,11 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
     return;
   }
 
-  // the overlay's own ImGui context: the window's holds the panels
-  try {
-    record_overlay_ = std::make_unique<FrameOverlay>();
-  } catch (const std::exception& e) {
-    record_message_ = e.what();
-    log_.add("recording could not start: " + record_message_);
-    writer_.reset();
-    return;
-  }
-
   // the off-screen target the recorded frames are drawn into
   if (!make_target(record_width_, record_height_, fbo_, color_rbo_)) {
     record_message_ = "the off-screen framebuffer for recording is incomplete";
     log_.add("recording could not start: " + record_message_);
     writer_.reset();
-    record_overlay_.reset();
     return;
   }
   // the movie keeps the camera the window has now (the window stops growing its view too)
@@ -79,12 +68,11 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
   send(c);
 }
 
-RgbaImage GuiApp::draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, FrameOverlay& overlay,
-                               int width, int height) {
+RgbaImage GuiApp::draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, int width, int height) {
   // draw off-screen with the overlay, read back (rows bottom-up in GL)
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   renderer_->draw(frame, camera, render_, width, height);
-  if (render_.show_overlay && frame.geometry) overlay.draw(*renderer_, frame, render_, width, height);
+  if (frame.geometry) renderer_->draw_overlay(frame, render_, width, height);
   RgbaImage image;
   image.resize(width, height);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -120,8 +108,7 @@ void GuiApp::write_picture(const std::string& path, int fb_width, int fb_height)
   try {
     if (!snap.geometry) throw std::runtime_error("nothing drawn yet");
     if (!make_target(fb_width, fb_height, fbo, rbo)) throw std::runtime_error("off-screen framebuffer incomplete");
-    FrameOverlay overlay;
-    const RgbaImage image = draw_picture(snap, picture_camera(camera_, fb_height), fbo, overlay, fb_width, fb_height);
+    const RgbaImage image = draw_picture(snap, picture_camera(camera_, fb_height), fbo, fb_width, fb_height);
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(1, &rbo);
     write_png(path, image);
@@ -138,7 +125,7 @@ void GuiApp::write_picture(const std::string& path, int fb_width, int fb_height)
 
 void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
   // the camera the recording started with: a movie's view does not jump
-  writer.write(draw_picture(frame, record_camera_, fbo_, *record_overlay_, record_width_, record_height_));
+  writer.write(draw_picture(frame, record_camera_, fbo_, record_width_, record_height_));
 }
 
 void GuiApp::pump_recording() {
@@ -175,7 +162,6 @@ void GuiApp::stop_recording() {
     record_message_ = std::string("recording ended with an error: ") + e.what();
   }
   log_.add(record_message_);
-  record_overlay_.reset();
   glDeleteFramebuffers(1, &fbo_);
   glDeleteRenderbuffers(1, &color_rbo_);
   fbo_ = color_rbo_ = 0;

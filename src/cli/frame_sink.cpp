@@ -8,7 +8,7 @@
 
 #ifdef PERIFLEX_WITH_HEADLESS
 #include "headless/recorder.h"
-#include "render/frame_writer.h"
+#include "io/frame_writer.h"
 #include "render/view.h"
 #endif
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "core/error.h"
-#include "stability/child_process.h"
+#include "io/child_process.h"
 #include "stability/stability_suite.h"
 
 namespace periflex {

@@ -14,7 +14,7 @@
 
 #include "core/error.h"
 #include "output/atomic_file.h"
-#include "stability/child_process.h"
+#include "io/child_process.h"
 #include "study/sweep_def.h"
 
 namespace periflex {

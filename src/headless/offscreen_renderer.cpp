@@ -1,8 +1,5 @@
 #include "headless/offscreen_renderer.h"
 
-#include <backends/imgui_impl_opengl3.h>
-#include <imgui.h>
-
 #include <algorithm>
 #include <stdexcept>
 
@@ -18,11 +15,9 @@ struct OffscreenRenderer::Impl {
   GLuint draw_fbo = 0, draw_color = 0, draw_depth = 0;   // what the scene is drawn into
   GLuint read_fbo = 0, read_color = 0;                   // single-sample copy for glReadPixels
   std::unique_ptr<Renderer> renderer;
-  ImGuiContext* imgui = nullptr;
 
   void make_framebuffers();
   void draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings);
-  void draw_overlay(const Snapshot& snapshot, const RenderSettings& settings);
 };
 
 void OffscreenRenderer::Impl::make_framebuffers() {
@@ -63,23 +58,7 @@ void OffscreenRenderer::Impl::make_framebuffers() {
 void OffscreenRenderer::Impl::draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings) {
   glBindFramebuffer(GL_FRAMEBUFFER, draw_fbo);
   renderer->draw(snapshot, camera, settings, width, height);
-  if (settings.show_overlay) draw_overlay(snapshot, settings);
-}
-
-void OffscreenRenderer::Impl::draw_overlay(const Snapshot& snapshot, const RenderSettings& settings) {
-  // ImGui's current context is process-wide: switch to ours under the shared lock, then restore
-  ImGuiContextLock lock;
-  ImGuiContext* previous = ImGui::GetCurrentContext();
-  ImGui::SetCurrentContext(imgui);
-  ImGuiIO& io = ImGui::GetIO();
-  io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
-  io.DeltaTime = 1.0f / 60.0f;
-  ImGui_ImplOpenGL3_NewFrame();
-  ImGui::NewFrame();
   renderer->draw_overlay(snapshot, settings, width, height);
-  ImGui::Render();
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
-  ImGui::SetCurrentContext(previous);
 }
 
 OffscreenRenderer::OffscreenRenderer(int width, int height, int samples, const std::string& resource_root)
@@ -93,35 +72,11 @@ OffscreenRenderer::OffscreenRenderer(int width, int height, int samples, const s
   m.samples = samples;
   m.make_framebuffers();
   m.renderer = std::make_unique<Renderer>(resource_root);
-
-  // an ImGui context for the overlay only: no input, no settings file
-  ImGuiContextLock lock;
-  ImGuiContext* previous = ImGui::GetCurrentContext();
-  m.imgui = ImGui::CreateContext();
-  ImGui::SetCurrentContext(m.imgui);
-  ImGui::GetIO().IniFilename = nullptr;
-  ImGui::GetIO().LogFilename = nullptr;
-  const bool ok = ImGui_ImplOpenGL3_Init("#version 330 core");
-  if (!ok) {
-    ImGui::DestroyContext(m.imgui);
-    m.imgui = nullptr;
-    ImGui::SetCurrentContext(previous);
-    throw std::runtime_error("Dear ImGui's OpenGL 3 back end could not start under EGL");
-  }
-  ImGui::SetCurrentContext(previous);
 }
 
 OffscreenRenderer::~OffscreenRenderer() {
   Impl& m = *impl_;
   m.egl.make_current();
-  if (m.imgui) {
-    ImGuiContextLock lock;
-    ImGuiContext* previous = ImGui::GetCurrentContext();
-    ImGui::SetCurrentContext(m.imgui);
-    ImGui_ImplOpenGL3_Shutdown();
-    ImGui::DestroyContext(m.imgui);
-    ImGui::SetCurrentContext(previous == m.imgui ? nullptr : previous);
-  }
   m.renderer.reset();
   for (GLuint f : {m.draw_fbo, m.read_fbo})
     if (f) glDeleteFramebuffers(1, &f);

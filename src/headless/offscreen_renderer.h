@@ -1,13 +1,13 @@
 // Renders Snapshots to RGBA images without a window: an EGL context, a framebuffer object of the
-// requested size (multisampled, resolved before reading), the ordinary Renderer, and an ImGui
-// context of its own for the overlay. Use it on the thread that created it.
+// requested size (multisampled, resolved before reading) and the ordinary Renderer, which draws
+// the overlay too. Use it on the thread that created it.
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "core/resources.h"
-#include "render/image.h"
+#include "io/image.h"
 #include "render/renderer.h"
 
 namespace periflex {

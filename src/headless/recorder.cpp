@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "headless/offscreen_renderer.h"
-#include "render/frame_writer.h"
-#include "render/image.h"
+#include "io/frame_writer.h"
+#include "io/image.h"
 #include "render/view.h"
 
 namespace periflex {

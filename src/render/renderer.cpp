@@ -1,7 +1,5 @@
 #include "render/renderer.h"
 
-#include <imgui.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -12,7 +10,8 @@
 
 #include "render/deformation.h"
 #include "render/gl.h"
-#include "render/image.h"
+#include "io/image.h"
+#include "render/overlay_layout.h"
 #include "render/solid_mesh.h"
 
 namespace periflex {
@@ -37,26 +36,6 @@ bool parse_field_name(const std::string& name, ColorField& field) {
     }
   }
   return false;
-}
-
-std::mutex& imgui_context_mutex() {
-  static std::mutex m;
-  return m;
-}
-
-namespace {
-thread_local bool imgui_lock_held = false;  // this thread holds imgui_context_mutex
-}  // namespace
-
-ImGuiContextLock::ImGuiContextLock() {
-  if (imgui_lock_held) throw std::logic_error("the ImGui context lock was taken twice on one thread");
-  imgui_context_mutex().lock();
-  imgui_lock_held = true;
-}
-
-ImGuiContextLock::~ImGuiContextLock() {
-  imgui_lock_held = false;
-  imgui_context_mutex().unlock();
 }
 
 namespace {
@@ -542,82 +521,48 @@ const char* field_unit(ColorField field) {
   return "-";
 }
 
-// A length in the unit that reads best: "20 mm", "500 um", "2 m".
-std::string format_length(double metres) {
-  char text[32];
-  if (metres >= 1.0) std::snprintf(text, sizeof text, "%g m", metres);
-  else if (metres >= 1e-3) std::snprintf(text, sizeof text, "%g mm", metres * 1e3);
-  else std::snprintf(text, sizeof text, "%g um", metres * 1e6);
-  return text;
-}
-
 }  // namespace
 
-void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height) {
+void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height,
+                            int left) {
   if (!settings.show_overlay) return;
-  ImDrawList* dl = ImGui::GetForegroundDrawList();
-  const float font = ImGui::GetFontSize();
-  const ImU32 white = IM_COL32(240, 240, 240, 255), shade = IM_COL32(0, 0, 0, 140);
+  Impl& m = *impl_;
 
-  // top left: scene name, time and step, and the deformation factor when it is not 1, on a
-  // shaded box
-  std::vector<std::string> lines;
-  if (snapshot.geometry && !snapshot.geometry->scene_name.empty()) lines.push_back(snapshot.geometry->scene_name);
+  // what the overlay says: scene name, time and step, the deformation factor when it is not 1
+  OverlayContent content;
+  if (snapshot.geometry && !snapshot.geometry->scene_name.empty())
+    content.lines.push_back(snapshot.geometry->scene_name);
   char line[160];
   std::snprintf(line, sizeof line, "t = %.6g s   step %ld", snapshot.time, snapshot.step);
-  lines.push_back(line);
-  if (!snapshot.px.empty() && impl_->deform_used != 1.0) {
-    std::snprintf(line, sizeof line, "deformation x%g%s", impl_->deform_used, settings.deform < 0.0f ? " (auto)" : "");
-    lines.push_back(line);
+  content.lines.push_back(line);
+  if (!snapshot.px.empty() && m.deform_used != 1.0) {
+    std::snprintf(line, sizeof line, "deformation x%g%s", m.deform_used, settings.deform < 0.0f ? " (auto)" : "");
+    content.lines.push_back(line);
   }
-  float text_w = 0.0f;
-  for (const std::string& l : lines) text_w = std::max(text_w, ImGui::CalcTextSize(l.c_str()).x);
-  dl->AddRectFilled(ImVec2(6, 6), ImVec2(14 + text_w, 10 + lines.size() * (font + 2)), shade, 3.0f);
-  float y = 8;
-  for (const std::string& l : lines) {
-    dl->AddText(ImVec2(10, y), white, l.c_str());
-    y += font + 2;
-  }
+  content.pixel_world = m.pixel_world;
+  content.legend = !snapshot.px.empty();
+  content.legend_title = std::string(field_name(settings.field)) + " [" + field_unit(settings.field) + "]";
+  content.range_min = m.range_min;
+  content.range_max = m.range_max;
+  content.colormap = &colormap_table(settings.colormap);
 
-  // bottom right: a scale bar of a round length (1, 2 or 5 times a power of ten), 40 to 100
-  // pixels long, clear of the colour legend down to 320-pixel-wide pictures
-  if (impl_->pixel_world > 0.0 && std::isfinite(impl_->pixel_world)) {
-    const double metres = round_down_125(100.0 * impl_->pixel_world);
-    const float bar = static_cast<float>(metres / impl_->pixel_world);
-    const std::string label = format_length(metres);
-    const float label_w = ImGui::CalcTextSize(label.c_str()).x;
-    const float x1 = width - 14.0f, x0 = x1 - bar, yb = height - 14.0f;
-    dl->AddRectFilled(ImVec2(x0 - 6, yb - font - 10), ImVec2(x1 + 6, height - 6.0f), shade, 3.0f);
-    dl->AddLine(ImVec2(x0, yb), ImVec2(x1, yb), white, 2.0f);
-    dl->AddLine(ImVec2(x0, yb - 5), ImVec2(x0, yb + 1), white, 2.0f);
-    dl->AddLine(ImVec2(x1, yb - 5), ImVec2(x1, yb + 1), white, 2.0f);
-    dl->AddText(ImVec2(0.5f * (x0 + x1 - label_w), yb - font - 6), white, label.c_str());
-  }
-
-  // bottom left: colour legend of the particle field, with its unit
-  if (snapshot.px.empty()) return;
-  const std::vector<unsigned char>& table = colormap_table(settings.colormap);
-  const float bar_w = std::min(220.0f, 0.5f * width), bar_h = 12.0f;
-  const float x0 = 12.0f, y0 = height - 12.0f - font - 4.0f - bar_h;
-  dl->AddRectFilled(ImVec2(x0 - 6, y0 - font - 8), ImVec2(x0 + bar_w + 6, height - 6.0f), shade, 3.0f);
-  const int steps = 64;
-  for (int i = 0; i < steps; ++i) {
-    auto color_at = [&](int k) {
-      const int e = std::clamp(k * 255 / steps, 0, 255) * 4;
-      return IM_COL32(table[e], table[e + 1], table[e + 2], 255);
-    };
-    const float xa = x0 + bar_w * i / steps, xb = x0 + bar_w * (i + 1) / steps;
-    const ImU32 ca = color_at(i), cb = color_at(i + 1);
-    dl->AddRectFilledMultiColor(ImVec2(xa, y0), ImVec2(xb, y0 + bar_h), ca, cb, cb, ca);
-  }
-  dl->AddRect(ImVec2(x0, y0), ImVec2(x0 + bar_w, y0 + bar_h), white);
-  const std::string title = std::string(field_name(settings.field)) + " [" + field_unit(settings.field) + "]";
-  dl->AddText(ImVec2(x0, y0 - font - 3), white, title.c_str());
-  char lo[32], hi[32];
-  std::snprintf(lo, sizeof lo, "%.3g", impl_->range_min);
-  std::snprintf(hi, sizeof hi, "%.3g", impl_->range_max);
-  dl->AddText(ImVec2(x0, y0 + bar_h + 2), white, lo);
-  dl->AddText(ImVec2(x0 + bar_w - ImGui::CalcTextSize(hi).x, y0 + bar_h + 2), white, hi);
+  // laid out in pixels (y down) and drawn with the solid-colour program over the picture
+  m.mesh.clear();
+  m.mesh.set_pixel_world(1.0);
+  build_overlay(m.mesh, content, left, width, height);
+  const float w = static_cast<float>(std::max(width, 1)), h = static_cast<float>(std::max(height, 1));
+  const float pixels[16] = {2.0f / w, 0, 0, 0, 0, -2.0f / h, 0, 0, 0, 0, -1.0f, 0, -1.0f, 1.0f, 0, 1.0f};
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  m.draw_mesh(pixels);
+  m.mesh.set_pixel_world(m.pixel_world);
+  glBindVertexArray(0);
+  glUseProgram(0);
 }
 
 float Renderer::last_range_min() const { return impl_->range_min; }

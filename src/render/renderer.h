@@ -3,7 +3,6 @@
 #pragma once
 
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -20,22 +19,6 @@ enum class ColorField { kDamage, kDisplacement, kSpeed, kStrain };
 const char* field_name(ColorField field);
 // Parses a name given by field_name; returns false when it is none of them.
 bool parse_field_name(const std::string& name, ColorField& field);
-
-// Dear ImGui keeps its current context in one process-wide pointer. Any code that uses an ImGui
-// context while another thread may use a different one (the GUI plus an off-screen recorder)
-// holds this mutex from ImGui::SetCurrentContext/NewFrame until ImGui_ImplOpenGL3_RenderDrawData.
-std::mutex& imgui_context_mutex();
-
-// Holds imgui_context_mutex for a scope. Taking it again on a thread that already holds it
-// throws std::logic_error instead of freezing the program for good (std::mutex is not
-// recursive): a drawing path that needs the lock must run outside a locked ImGui frame.
-class ImGuiContextLock {
- public:
-  ImGuiContextLock();
-  ~ImGuiContextLock();
-  ImGuiContextLock(const ImGuiContextLock&) = delete;
-  ImGuiContextLock& operator=(const ImGuiContextLock&) = delete;
-};
 
 // RenderSettings::deform asking for the automatic magnification
 constexpr float kAutoDeform = -1.0f;
@@ -73,9 +56,13 @@ class Renderer {
   // std::runtime_error for an unknown colour map name (colormap_names() lists the valid ones).
   void draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings,
             int width, int height);
-  // Draws the overlay (time, scene name, deformation factor, colour legend, scale bar) with Dear ImGui's draw lists;
-  // call between ImGui::NewFrame() and ImGui::Render().
-  void draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height);
+  // Draws the overlay (scene name, time, deformation factor, colour legend, scale bar) over the
+  // current framebuffer (width x height pixels), after draw() of the same snapshot: the legend
+  // shows the range that draw used. Text comes from the renderer's own glyph quads
+  // (render/overlay_text.h), so any thread with a current context may call it. With left > 0 the
+  // overlay keeps to the columns right of it (beside the window's panels).
+  void draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height,
+                    int left = 0);
   // Colour range used by the last draw (auto or fixed).
   float last_range_min() const;
   float last_range_max() const;

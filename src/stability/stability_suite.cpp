@@ -10,7 +10,7 @@
 
 #include "core/resources.h"
 #include "solve/simulation.h"
-#include "stability/child_process.h"
+#include "io/child_process.h"
 #include "stability/run_outputs.h"
 
 namespace periflex {

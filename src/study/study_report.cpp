@@ -1,6 +1,6 @@
 #include "study/study_report.h"
 
-#include "stability/child_process.h"
+#include "io/child_process.h"
 #include "study/energy_trace.h"
 #include <algorithm>
 #include <cmath>

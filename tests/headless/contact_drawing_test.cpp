@@ -8,7 +8,7 @@
 #include <string>
 
 #include "../cli/run_program.h"
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex {
 namespace {

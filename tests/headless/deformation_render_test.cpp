@@ -10,7 +10,7 @@
 #include <filesystem>
 
 #include "../cli/run_program.h"
-#include "render/image.h"
+#include "io/image.h"
 #include "render/renderer.h"
 
 namespace periflex::testing {

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "headless/recorder.h"
-#include "render/frame_writer.h"
-#include "render/image.h"
+#include "io/frame_writer.h"
+#include "io/image.h"
 
 namespace periflex::testing {
 namespace {

@@ -8,7 +8,7 @@
 #include <set>
 
 #include "../cli/run_program.h"
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex::testing {
 namespace {

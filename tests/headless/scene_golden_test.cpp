@@ -11,7 +11,7 @@
 #include <filesystem>
 
 #include "headless/offscreen_renderer.h"
-#include "render/image.h"
+#include "io/image.h"
 #include "render/view.h"
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <regex>
 
-#include "stability/child_process.h"
+#include "io/child_process.h"
 #include "stability/stability_suite.h"
 
 namespace periflex {

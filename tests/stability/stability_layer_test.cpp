@@ -9,7 +9,7 @@
 #include <set>
 
 #include "core/resources.h"
-#include "stability/child_process.h"
+#include "io/child_process.h"
 #include "stability/run_outputs.h"
 #include "stability/stability_case.h"
 

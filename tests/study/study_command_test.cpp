@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "stability/child_process.h"
+#include "io/child_process.h"
 
 namespace periflex {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/image.h"
+#include "io/image.h"
 
 #include <stb_image.h>
 
@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <stdexcept>
 
-#include "render/png_encoder.h"
+#include "io/png_encoder.h"
 
 namespace periflex {
 

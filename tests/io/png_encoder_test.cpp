@@ -7,8 +7,8 @@
 #include <random>
 #include <string>
 
-#include "render/image.h"
-#include "render/png_encoder.h"
+#include "io/image.h"
+#include "io/png_encoder.h"
 
 namespace periflex {
 namespace {

@@ -1,4 +1,4 @@
-#include "render/frame_writer.h"
+#include "io/frame_writer.h"
 
 #include <fcntl.h>
 #include <spawn.h>

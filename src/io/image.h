@@ -25,7 +25,7 @@ struct RgbaImage {
 // Reverses the row order in place (OpenGL reads bottom row first).
 void flip_rows(RgbaImage& image);
 
-// Encodes to PNG with the fast encoder of render/png_encoder.h (safe on any thread; opaque
+// Encodes to PNG with the fast encoder of io/png_encoder.h (safe on any thread; opaque
 // pictures are stored as RGB).
 std::vector<uint8_t> encode_png(const RgbaImage& image);
 // Writes a PNG atomically: to "<path>.tmp" first, then renamed, so an interrupted run never

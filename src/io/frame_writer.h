@@ -6,7 +6,7 @@
 #include <string>
 #include <sys/types.h>
 
-#include "render/image.h"
+#include "io/image.h"
 
 namespace periflex {
 

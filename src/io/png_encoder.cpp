@@ -1,4 +1,4 @@
-#include "render/png_encoder.h"
+#include "io/png_encoder.h"
 
 #include <libdeflate.h>
 

@@ -1,4 +1,4 @@
-#include "stability/child_process.h"
+#include "io/child_process.h"
 
 #include <fcntl.h>
 #include <poll.h>

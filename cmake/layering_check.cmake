@@ -1,0 +1,38 @@
+# Run by the layering_includes test (tests/layering.cmake) with -DSOURCE_DIR=<src>: fails naming
+# every file that includes a header its layer must not.
+set(solver_layers core scene mbs pd coupling contact solve output)
+set(gl_headers "GL/|GLFW/|EGL/|imgui|backends/imgui")
+set(failures "")
+
+function(check_folder folder pattern)
+  file(GLOB_RECURSE files "${SOURCE_DIR}/${folder}/*.cpp" "${SOURCE_DIR}/${folder}/*.h")
+  foreach(f IN LISTS files)
+    file(STRINGS "${f}" hits REGEX "^[ \t]*#[ \t]*include[ \t]*[<\"](${pattern})")
+    foreach(h IN LISTS hits)
+      string(STRIP "${h}" h)
+      list(APPEND failures "${f}: ${h}")
+    endforeach()
+  endforeach()
+  set(failures "${failures}" PARENT_SCOPE)
+endfunction()
+
+# the solver: no GL, and nothing from the layers above it
+foreach(layer IN LISTS solver_layers)
+  check_folder(${layer} "${gl_headers}|io/|study/|stability/|render/|headless/|app/|cli/")
+endforeach()
+# files without GL, below the tools and the renderer
+check_folder(io "${gl_headers}|study/|stability/|render/|headless/|app/|cli/")
+# the tools: no GL, no renderer
+foreach(layer study stability)
+  check_folder(${layer} "${gl_headers}|render/|headless/|app/|cli/")
+endforeach()
+# the renderer and the off-screen path draw without Dear ImGui (the window's panels only use it)
+foreach(folder render headless)
+  check_folder(${folder} "imgui|backends/imgui|app/|cli/")
+endforeach()
+
+if(failures)
+  list(JOIN failures "\n  " text)
+  message(FATAL_ERROR "headers a layer must not include:\n  ${text}")
+endif()
+message(STATUS "layering: no forbidden include")

@@ -70,7 +70,7 @@ void StateHistory::add(SimState&& state, double time, long step) {
   e.time = time;
   e.step = step;
   const size_t raw = state_bytes(state);
-  compressed_ = raw >= compress_from_;
+  compressed_ = raw >= (compress_from_ > 0 ? compress_from_ : budget_ / kCompressBelowStates);
   if (compressed_) {
     // large: the codec's bytes deflated, in a buffer trimmed to what they take
     const std::vector<uint8_t> bytes = encode_state(state);

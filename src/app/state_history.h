@@ -13,7 +13,8 @@
 // comparison per step and nothing else. When the budget is exceeded, the oldest half of the ring
 // is thinned (every other state there dropped, the first one kept), so the recent past stays dense
 // and the far past sparser instead of refusing new states. Large states are kept compressed
-// (output/state_codec.h and deflate), small ones as they are. Owned by the simulation thread.
+// (output/state_codec.h and deflate) when the budget
+// would hold few of them, small ones as they are. Owned by the simulation thread.
 #pragma once
 
 #include <cstddef>
@@ -24,9 +25,10 @@
 
 namespace periflex {
 
-// States of at least this many bytes are kept compressed: below it a copy is cheaper than
-// encoding and deflating, and the ring's memory is not where the states are (docs/gui.md).
-constexpr size_t kCompressStatesFrom = 256 * 1024;
+// States larger than the budget over this are kept compressed: the budget would hold fewer
+// than this many of them as they are. Compressing takes ten or more times a copy and saves a
+// quarter to a third of the bytes (docs/gui.md), worth it only where the budget binds.
+constexpr size_t kCompressBelowStates = 64;
 
 class StateHistory {
  public:
@@ -35,7 +37,7 @@ class StateHistory {
   void configure(double interval, size_t budget, double now);
   double interval() const { return interval_; }
   size_t budget() const { return budget_; }
-  // States of at least `bytes` are kept compressed (kCompressStatesFrom unless set).
+  // States of at least `bytes` are kept compressed (0: budget / kCompressBelowStates).
   void compress_from(size_t bytes) { compress_from_ = bytes; }
 
   // Whether the state at `time` is to be saved (always false when off).
@@ -88,7 +90,7 @@ class StateHistory {
   size_t bytes_ = 0;
   bool compressed_ = false;
   bool too_large_ = false;
-  size_t compress_from_ = kCompressStatesFrom;
+  size_t compress_from_ = 0;
 };
 
 }  // namespace periflex

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace periflex {
 namespace {
@@ -61,6 +62,8 @@ TEST(StateHistory, BudgetHoldsAndTheOldestHalfIsThinned) {
   const long n = 1000;
   const size_t one = state_bytes(state_of(0, n));
   const size_t budget = 40 * one;
+  // kept as they are, so the budget holds a known number of them
+  h.compress_from(std::numeric_limits<size_t>::max());
   h.configure(1e-3, budget, 0.0);
   h.add(state_of(0, n), 0.0, 0);
   size_t most = 0;
@@ -84,6 +87,20 @@ TEST(StateHistory, BudgetHoldsAndTheOldestHalfIsThinned) {
   SimState s;
   h.get(h.size() / 2, s);
   EXPECT_EQ(s.steps, h.step(h.size() / 2));
+
+  // compressed (states over a 64th of the budget), the budget holds just the same
+  StateHistory packed;
+  packed.configure(1e-3, budget, 0.0);
+  for (long k = 0; k <= 5000; ++k) {
+    const double t = static_cast<double>(k) * 1e-3;
+    if (!packed.due(t)) continue;
+    packed.add(state_of(k, n), t, k);
+    ASSERT_TRUE(packed.compressed());
+    ASSERT_LE(packed.bytes(), budget) << "after step " << k;
+  }
+  EXPECT_GT(packed.size(), h.size());
+  EXPECT_EQ(packed.step(0), 0);
+  EXPECT_EQ(packed.step(packed.size() - 1), 5000);
 }
 
 TEST(StateHistory, AStateLargerThanTheBudgetIsNotKept) {
@@ -97,7 +114,8 @@ TEST(StateHistory, AStateLargerThanTheBudgetIsNotKept) {
 
 TEST(StateHistory, LargeStatesAreCompressedAndComeBackBitForBit) {
   StateHistory h;
-  h.configure(1e-3, size_t{1} << 30, 0.0);
+  // 64 MB: states over 1 MB are compressed
+  h.configure(1e-3, size_t{64} << 20, 0.0);
   // a grid's coordinates and a smooth velocity field with noise in the low bits
   const long n = 200000;
   SimState big = state_of(7, n);
@@ -107,7 +125,7 @@ TEST(StateHistory, LargeStatesAreCompressedAndComeBackBitForBit) {
   big.flex[0].broken_bits[123] = 0x10;
   const SimState copy = big;
   const size_t raw = state_bytes(big);
-  ASSERT_GE(raw, kCompressStatesFrom);
+  ASSERT_GE(raw, h.budget() / kCompressBelowStates);
   h.add(std::move(big), 0.0, 0);
   ASSERT_EQ(h.size(), 1u);
   EXPECT_TRUE(h.compressed());
@@ -121,11 +139,13 @@ TEST(StateHistory, LargeStatesAreCompressedAndComeBackBitForBit) {
   ASSERT_EQ(back.flex.size(), 1u);
   EXPECT_EQ(back.flex[0].broken_bits, copy.flex[0].broken_bits);
   EXPECT_EQ(back.steps, 7);
-  // a small state is kept as it is
-  StateHistory small;
-  small.configure(1e-3, size_t{1} << 30, 0.0);
-  small.add(state_of(1, 8), 0.0, 1);
-  EXPECT_FALSE(small.compressed());
+  // the same state under a budget that holds many of them is kept as it is
+  StateHistory roomy;
+  roomy.configure(1e-3, size_t{1} << 30, 0.0);
+  SimState again = copy;
+  roomy.add(std::move(again), 0.0, 0);
+  EXPECT_FALSE(roomy.compressed());
+  EXPECT_GE(roomy.bytes(), raw);
 }
 
 TEST(StateHistory, DroppingTheFutureSavesAgainAtTheMarksAfterTheStateKept) {

@@ -187,6 +187,19 @@ void GuiApp::execute(const ScriptAction& a) {
     SimCommand c = command(Kind::kStep);
     c.count = a.args.empty() ? 1 : std::atoi(a.args[0].c_str());
     send(c);
+  } else if (verb == "history") {
+    SimCommand c = command(Kind::kHistory);
+    c.number = std::atof(a.args[0].c_str());
+    c.count = a.args.size() > 1 ? std::atoi(a.args[1].c_str()) : static_cast<int>(status_.history_budget >> 20);
+    send(c);
+  } else if (verb == "back") {
+    SimCommand c = command(Kind::kScrubStep);
+    c.count = -1;
+    for (int k = a.args.empty() ? 1 : std::atoi(a.args[0].c_str()); k > 0; --k) send(c);
+  } else if (verb == "scrub") {
+    SimCommand c = command(Kind::kScrub);
+    c.number = std::atof(a.args[0].c_str());
+    send(c);
   } else if (verb == "reset") send(command(Kind::kReset));
   else if (verb == "reload") send(command(Kind::kReload));
   else if (verb == "scene") {

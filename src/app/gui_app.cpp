@@ -132,6 +132,11 @@ void GuiApp::take_snapshot() {
                                  fs::path(status_.scene_path).filename().string());
     scene_choice_ = found == scenes_.end() ? -1 : static_cast<int>(found - scenes_.begin());
   }
+  // a state from the history shown: the plots and trails after it are of a future to be recomputed
+  if (worker_.has_snapshot() && history_.size() > 0 && snap.time < history_.last_time()) {
+    history_.drop_from(snap.time);
+    renderer_->clear_trails();
+  }
   if (worker_.has_snapshot()) history_.add(snap, status_.steps_per_second);
 }
 

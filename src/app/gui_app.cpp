@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <thread>
@@ -132,6 +133,11 @@ void GuiApp::take_snapshot() {
                                  fs::path(status_.scene_path).filename().string());
     scene_choice_ = found == scenes_.end() ? -1 : static_cast<int>(found - scenes_.begin());
   }
+  // a state from the history shown: the plots and trails after it are of a future to be recomputed
+  if (worker_.has_snapshot() && history_.size() > 0 && snap.time < history_.last_time()) {
+    history_.drop_from(snap.time);
+    renderer_->clear_trails();
+  }
   if (worker_.has_snapshot()) history_.add(snap, status_.steps_per_second);
 }
 
@@ -186,6 +192,19 @@ void GuiApp::execute(const ScriptAction& a) {
   else if (verb == "step") {
     SimCommand c = command(Kind::kStep);
     c.count = a.args.empty() ? 1 : std::atoi(a.args[0].c_str());
+    send(c);
+  } else if (verb == "history") {
+    SimCommand c = command(Kind::kHistory);
+    c.number = std::atof(a.args[0].c_str());
+    c.count = a.args.size() > 1 ? std::atoi(a.args[1].c_str()) : static_cast<int>(status_.history_budget >> 20);
+    send(c);
+  } else if (verb == "back") {
+    SimCommand c = command(Kind::kScrubStep);
+    c.count = -1;
+    for (int k = a.args.empty() ? 1 : std::atoi(a.args[0].c_str()); k > 0; --k) send(c);
+  } else if (verb == "scrub") {
+    SimCommand c = command(Kind::kScrub);
+    c.number = std::atof(a.args[0].c_str());
     send(c);
   } else if (verb == "reset") send(command(Kind::kReset));
   else if (verb == "reload") send(command(Kind::kReload));
@@ -363,7 +382,22 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     if (io.WantCaptureKeyboard) continue;
     const bool ctrl = (k.mods & GLFW_MOD_CONTROL) != 0;
     if (playback_ && playback_->on_key(k.key, worker_)) continue;
-    if (k.key == GLFW_KEY_RIGHT) send(SimCommand::make(Kind::kStep, "key"));  // repeats when held
+    // Right: one step, or one saved state forward while the history is shown; Left: one saved
+    // state back (both repeat when held)
+    if (k.key == GLFW_KEY_RIGHT) {
+      if (status_.scrub >= 0) {
+        SimCommand c = SimCommand::make(Kind::kScrubStep, "key");
+        c.count = 1;
+        send(c);
+      } else {
+        send(SimCommand::make(Kind::kStep, "key"));
+      }
+    }
+    if (k.key == GLFW_KEY_LEFT) {
+      SimCommand c = SimCommand::make(Kind::kScrubStep, "key");
+      c.count = -1;
+      send(c);
+    }
     if (k.repeat) continue;
     if (k.key == GLFW_KEY_SPACE) send(SimCommand::make(Kind::kToggleRun, "key"));
     if (k.key == GLFW_KEY_BACKSPACE) send(SimCommand::make(Kind::kReset, "key"));
@@ -521,6 +555,21 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   dump_.state("time", status_.time);
   dump_.state("bond_damping", status_.settings.bond_damping);
   dump_.state("dt", status_.settings.dt);
+  dump_.state("history_states", static_cast<double>(status_.history_states));
+  dump_.state("history_interval", status_.history_interval);
+  dump_.state("scrub", static_cast<double>(status_.scrub));
+  {
+    // the series row of the state shown, as a hash of its bits: equal rows, equal hashes
+    uint64_t h = 0xcbf29ce484222325ull;
+    for (double v : worker_.snapshot().series) {
+      unsigned char bytes[sizeof v];
+      std::memcpy(bytes, &v, sizeof v);
+      for (unsigned char b : bytes) h = (h ^ b) * 0x100000001b3ull;
+    }
+    char text[24];
+    std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+    dump_.state("series_hash", text);
+  }
   dump_.state("recording", writer_ ? "1" : "0");
   dump_.state("deform", renderer_->last_deform());
   dump_.state("deform_auto", render_.deform < 0.0f ? "1" : "0");

@@ -68,6 +68,8 @@ class GuiApp {
   void panel_view_controls();
   void panel_deformation();
   void panel_description();
+  // the history timeline, resume, cadence and budget (gui_history.cpp)
+  void panel_history();
 
   // teaching aids (gui_teach.cpp)
   void help_window(int fb_width, int fb_height);
@@ -140,6 +142,10 @@ class GuiApp {
   long edit_generation_ = -1;
   int speed_choice_ = 0;
   int step_count_ = 100;            // the Simulation panel's "Step N"
+  double history_interval_ = 0.0;   // the History panel's cadence and budget being typed
+  int history_budget_mb_ = 256;
+  bool history_edited_ = false;     // a field has the keyboard: not refreshed from the status
+  long history_edit_generation_ = -1;
   double step_to_time_ = 0.0;       // its "Step to t"; 0: not set yet
   std::vector<std::string> scenes_;
   int scene_choice_ = -1;

@@ -61,6 +61,9 @@ void GuiApp::draw_panels(int fb_width, int fb_height) {
   const bool about_open = ImGui::CollapsingHeader("About this scene");
   dump_.note_item("description_header");
   if (about_open) panel_description();
+  const bool history_open = ImGui::CollapsingHeader("History", ImGuiTreeNodeFlags_DefaultOpen);
+  dump_.note_item("history_header");
+  if (history_open) panel_history();
   if (ImGui::CollapsingHeader("Live parameters", ImGuiTreeNodeFlags_DefaultOpen)) panel_parameters();
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) panel_view();
   if (ImGui::CollapsingHeader("Plots")) panel_plots();

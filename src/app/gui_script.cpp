@@ -36,10 +36,11 @@ Arity arity(const std::string& verb) {
   static const std::set<std::string> none = {"run", "resume", "pause", "reset", "reload", "fit",
                                              "stop_record", "release", "quit"};
   static const std::set<std::string> one = {"scene", "set", "speed", "colormap", "field", "follow",
-                                            "screenshot", "screenshot_ui", "wait", "expect", "inspect"};
+                                            "screenshot", "screenshot_ui", "wait", "expect", "inspect", "scrub"};
   if (none.count(verb)) return {0, 0};
   if (one.count(verb)) return {1, 1};
-  if (verb == "step") return {0, 1};
+  if (verb == "step" || verb == "back") return {0, 1};
+  if (verb == "history") return {1, 2};
   if (verb == "range") return {1, 2};
   if (verb == "plot") return {1, 2};
   if (verb == "cut") return {4, 4};
@@ -65,7 +66,11 @@ void check_arguments(const ScriptAction& a) {
     if (std::atol(a.args[0].c_str()) < 1) fail(a.text, "step count must be at least 1");
   }
   if (a.verb == "speed" && a.args[0] != "max") number_at(0);
-  if (a.verb == "wait") number_at(0);
+  if (a.verb == "wait" || a.verb == "scrub") number_at(0);
+  if (a.verb == "history") {
+    for (size_t i = 0; i < a.args.size(); ++i) number_at(i);
+  }
+  if (a.verb == "back" && !a.args.empty()) number_at(0);
   if (a.verb == "record") number_at(1);
   if (a.verb == "grab" || a.verb == "drag") {
     number_at(0);

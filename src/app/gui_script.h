@@ -9,9 +9,13 @@
 //   colormap NAME, field damage|displacement|speed|strain, range auto|MIN MAX,
 //   show bodies|markers|springs|bonds|probes|trails|overlay on|off, fit, follow BODY|none,
 //   screenshot FILE, screenshot_ui FILE (with the panels), record PATH INTERVAL, stop_record,
-//   grab X Y, drag X Y, release, wait T, expect running|paused, expect KEY=VALUE, quit
+//   grab X Y, drag X Y, release, wait T, expect running|paused, expect KEY=VALUE, quit,
+//   history T [MB], back [N], scrub T
 // `grab` takes hold of what lies at the world point (X, Y) as a left-drag would (the script
 // fails when nothing is there), `drag` moves the held point's target, `release` lets go.
+// `history T [MB]` keeps a state every T simulated seconds (0: off) within MB megabytes; `back`
+// shows the saved state N before the one shown (Left pressed N times), `scrub T` the one nearest
+// T; `run` or `resume` then continues from it.
 // `wait T` holds the frame count until the simulated time reaches T (or the run stops);
 // `expect` first waits until the simulation thread has applied every request sent so far,
 // then fails the run (exit code 1) when the state differs.

@@ -11,10 +11,11 @@ struct KeyHelp {
   const char* action;
 };
 
-inline constexpr std::array<KeyHelp, 19> kKeyHelp = {{
+inline constexpr std::array<KeyHelp, 20> kKeyHelp = {{
     {"F1", "show or hide this list"},
     {"Space", "run / pause"},
-    {"Right arrow", "one step (pauses first; hold to repeat)"},
+    {"Right arrow", "one step (pauses first; hold to repeat); in the history: one saved state forward"},
+    {"Left arrow", "one saved state back in the history (pauses; hold to repeat)"},
     {"Backspace", "reset to t = 0 (keeps the live settings)"},
     {"F", "fit the view to the scene (and stop following a body)"},
     {"D", "undeformed shape, and back to the magnification before"},

@@ -48,6 +48,15 @@ void PlotHistory::clear() {
   last_step_ = -1;
 }
 
+void PlotHistory::drop_from(double t) {
+  if (columns_.empty()) return;
+  // the rows are in time order: keep those before t
+  const std::vector<double>& time = columns_[0];
+  const size_t keep = static_cast<size_t>(std::lower_bound(time.begin(), time.end(), t) - time.begin());
+  for (auto& v : columns_) v.resize(keep);
+  last_step_ = -1;
+}
+
 int PlotHistory::index_of(const std::string& name) const {
   const auto it = std::find(names_.begin(), names_.end(), name);
   return it == names_.end() ? -1 : static_cast<int>(it - names_.begin());

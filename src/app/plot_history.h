@@ -20,6 +20,9 @@ class PlotHistory {
   // Other columns than those held start a new history.
   void add(const Snapshot& s, double steps_per_second);
   void clear();
+  // Forgets the rows at time `t` and after (the window went back in its history to the state at
+  // `t`: its row comes next, the later ones are recomputed).
+  void drop_from(double t);
 
   // column names, "t" first and "steps_per_second" last
   const std::vector<std::string>& columns() const { return names_; }

@@ -28,6 +28,10 @@ struct SimCommand {
                      // the particles where the window draws them)
     kReactions,      // snapshots carry the joints' reactions (count 1) or not (count 0)
     kRecord,         // publish recording snapshots every `number` simulated seconds; 0 stops
+    kHistory,        // keep a state every `number` simulated seconds (<= 0: off) within `count` MB
+    kScrub,          // pause and show the history state nearest the time `number`
+    kScrubStep,      // pause and show the history state `count` (-1: back, +1: forward) from the one shown
+    kResume,         // drop the history after the state shown and run from it
     kQuit,           // end the simulation thread
   };
   Kind kind = Kind::kPause;

@@ -47,6 +47,7 @@ SimWorker::SimWorker(ModelFactory factory, const std::string& scene_path,
   model_ = factory_.build(scene_);
   scene_generation_ = 1;
   log_.add("loaded scene '" + scene_.name + "' from " + scene_path_);
+  history_defaults();
   publish();
 }
 
@@ -122,6 +123,15 @@ void SimWorker::publish() {
   s.mouse_stiffness = mouse_stiffness_;
   s.rejected_key = rejected_key_;
   s.rejected_message = rejected_message_;
+  s.history_interval = history_.interval();
+  s.history_budget = history_.budget();
+  s.history_bytes = history_.bytes();
+  s.history_states = history_.size();
+  s.history_first = history_.size() ? history_.time(0) : 0.0;
+  s.history_last = history_.size() ? history_.time(history_.size() - 1) : 0.0;
+  s.history_compressed = history_.compressed();
+  s.history_too_large = history_.too_large();
+  s.scrub = scrub_;
   std::lock_guard<std::mutex> lock(status_mutex_);
   status_ = std::move(s);
 }
@@ -155,6 +165,8 @@ void SimWorker::restarted(const std::string& scene_name, const char* what) {
   pending_steps_ = 0;
   reanchor();
   log_.add(std::string(what) + ": scene '" + scene_name + "' at t = 0, paused");
+  // the history starts again with the new start
+  history_defaults();
   // a recording goes on from the new start
   if (record_interval_ > 0.0) {
     record_start_ = model_->time();
@@ -197,6 +209,7 @@ void SimWorker::apply(SimCommand& c) {
         log_.add("pause at t = " + std::to_string(model_->time()) + by);
         break;
       }
+      leave_scrub(("run" + by).c_str());
       if (numerical_error_) {
         log_.add("cannot run: the last step failed; reset, reload or change a setting first" + by);
         break;
@@ -216,6 +229,7 @@ void SimWorker::apply(SimCommand& c) {
         log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
         break;
       }
+      leave_scrub(("step" + by).c_str());
       running_ = false;
       pending_steps_ += c.count > 0 ? c.count : 1;
       log_.add("step x" + std::to_string(c.count > 0 ? c.count : 1) + by);
@@ -225,6 +239,7 @@ void SimWorker::apply(SimCommand& c) {
         log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
         break;
       }
+      leave_scrub(("step to t" + by).c_str());
       running_ = false;
       // whole steps of dt from now, the last one at or after the time asked (a step of dt
       // that would overshoot it by less than a billionth of dt is not taken)
@@ -306,7 +321,8 @@ void SimWorker::apply(SimCommand& c) {
       model_->set_reactions(c.count != 0);
       break;
     case Kind::kCut: {
-      // paused or running, between two steps
+      // paused or running, between two steps; a cut into a state shown changes its future
+      leave_scrub(("knife" + by).c_str());
       const long cut = model_->cut_bonds(c.from, c.to, c.drawn_x, c.drawn_y);
       log_.add("knife: " + std::to_string(cut) + (cut == 1 ? " bond cut" : " bonds cut") + by);
       break;
@@ -319,6 +335,37 @@ void SimWorker::apply(SimCommand& c) {
                                       : "recording stopped" + by);
       // the first frame is the state at the moment recording starts
       record_if_due();
+      break;
+    case Kind::kHistory: {
+      // the user's cadence and budget hold for every scene from now on
+      history_auto_ = false;
+      const size_t budget = static_cast<size_t>(std::max(1, c.count)) << 20;
+      history_.configure(c.number, budget, model_->time());
+      log_.add((history_.interval() > 0.0 ? "history: a state every " + std::to_string(history_.interval()) + " s"
+                                          : std::string("history: off")) +
+               ", budget " + std::to_string(budget >> 20) + " MB" + by);
+      if (scrub_ < 0 && history_.due(model_->time())) save_history_if_due();
+      break;
+    }
+    case Kind::kScrub:
+      if (keep_live(by)) {
+        const size_t index = history_.nearest(c.number);
+        if (static_cast<long>(index) != scrub_) scrub_to(index, by);
+      }
+      break;
+    case Kind::kScrubStep:
+      scrub_step(c.count < 0 ? -1 : 1, by);
+      break;
+    case Kind::kResume:
+      if (numerical_error_) {
+        log_.add("cannot run: the last step failed; go back in the history, reset or change a setting first" + by);
+        break;
+      }
+      leave_scrub(("resume" + by).c_str());
+      running_ = true;
+      pending_steps_ = 0;
+      reanchor();
+      log_.add("run, " + describe_speed(speed_) + by);
       break;
     case Kind::kQuit:
       break;
@@ -401,6 +448,8 @@ void SimWorker::loop() {
       continue;
     }
     record_if_due();
+    // the history: one comparison per step when its cadence is off
+    if (history_.due(model_->time())) save_history_if_due();
 
     bool publish_now = false;
     if (pending_steps_ > 0 && --pending_steps_ == 0) publish_now = true;

@@ -21,6 +21,7 @@
 #include "app/event_log.h"
 #include "app/sim_command.h"
 #include "app/snapshot_exchange.h"
+#include "app/state_history.h"
 #include "solve/simulation.h"
 
 namespace periflex {
@@ -51,6 +52,10 @@ class SteppedModel {
   // Puts back the state the model started in (nothing held by the mouse), keeping the live
   // settings; false when the model cannot, and the worker then builds it again.
   virtual bool reset_to_start() { return false; }
+  // Copies out the whole state, or puts one back (the window's history, app/state_history.h);
+  // false when the model cannot, and the window then keeps no history.
+  virtual bool save_state(SimState& /*out*/) const { return false; }
+  virtual bool restore_state(const SimState& /*in*/) { return false; }
 };
 
 // How the worker gets scenes and models: load reads a file (throws InputError), build makes a
@@ -93,6 +98,14 @@ struct WorkerStatus {
   // the last refused live setting (its key as set_live_parameter names it, "" when it is not
   // one field's) and why; cleared by an accepted change or a rebuilt model
   std::string rejected_key, rejected_message;
+  // the history ring (app/state_history.h): its cadence [s] (0: off), budget and use [bytes],
+  // states kept and the times of the oldest and newest
+  double history_interval = 0.0;
+  size_t history_budget = 0, history_bytes = 0, history_states = 0;
+  double history_first = 0.0, history_last = 0.0;
+  bool history_compressed = false;   // the states are kept compressed (large ones)
+  bool history_too_large = false;    // the last state was larger than the whole budget
+  long scrub = -1;                   // the history state shown (paused); -1: the live state
 };
 
 class SimWorker {
@@ -133,6 +146,13 @@ class SimWorker {
   void publish();
   void record_if_due();
   void reanchor();
+  // the history (sim_worker_history.cpp)
+  void save_history_if_due();
+  void history_defaults();
+  bool keep_live(const std::string& by);
+  void scrub_to(size_t index, const std::string& by);
+  void scrub_step(int direction, const std::string& by);
+  void leave_scrub(const char* why);
 
   using Clock = std::chrono::steady_clock;
 
@@ -172,6 +192,16 @@ class SimWorker {
   std::condition_variable record_space_;
   std::deque<Snapshot> recorded_;
   std::atomic<bool> quitting_{false};
+
+  // the history ring, its settings, and the state shown while scrubbing (-1: the live one)
+  StateHistory history_;
+  bool history_auto_ = true;       // the cadence follows each scene until the user sets one
+  long scrub_ = -1;
 };
+
+// The window's default history budget [bytes].
+constexpr size_t kDefaultHistoryBudget = size_t{256} << 20;
+// The default cadence: this many states over the scene's end time.
+constexpr double kDefaultHistoryStates = 500.0;
 
 }  // namespace periflex

@@ -53,6 +53,14 @@ class SimulationModel final : public SteppedModel {
     sim_.restore_state(start_);
     return true;
   }
+  bool save_state(SimState& out) const override {
+    sim_.save_state(out);
+    return true;
+  }
+  bool restore_state(const SimState& in) override {
+    sim_.restore_state(in);
+    return true;
+  }
 
  private:
   Simulation sim_;

@@ -9,7 +9,7 @@
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
 # CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect | plot |
-#       knife | body | contacts
+#       knife | body | contacts | history
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -295,6 +295,77 @@ case "$case_name" in
     holds "$moved > 10 * $noise" || fail "moved $moved m, not 10x the noise $noise m"
     holds "$moved > 5e-4" || fail "moved $moved m: less than half a grid spacing"
     wait_until 10 "the release" '[[ -z "$(state grabbed)" ]]'
+    quit
+    ;;
+  history)
+    # the rigid pendulum: a state kept every 0.0333 s (33.3 steps of 1 ms, not a whole number),
+    # the run stepped to t = 4 s, then taken back with Left, forward with Right and further back
+    # with the timeline slider, all paused; resumed from there and stepped to t = 4 s again, it
+    # shows the same series row, bit for bit, as the first time
+    start pendulum.toml
+    xdotool mousemove --window "$window" 1200 100
+    tap space
+    wait_until 10 "Space to pause" '[[ "$(state running)" == 0 ]]'
+    click history_interval
+    retype 0.0333
+    field_key Return
+    wait_until 10 "the cadence of 0.0333 s applied" 'holds "$(state history_interval) == 0.0333"'
+    click step_to_time
+    retype 4
+    field_key Return
+    click step_to
+    wait_until 30 "Step to t to reach t = 4 s" '(( $(state step) == 4000 )) && [[ "$(state running)" == 0 ]]'
+    hash=$(state series_hash) t1=$(state time) kept=$(state history_states)
+    ((kept >= 80)) || fail "$kept states kept over 4 s"
+    [[ "$(state scrub)" == -1 ]] || fail "showing a history state before any was asked"
+    # Left three times: each press an earlier saved state (a press held past the X server's
+    # auto-repeat delay on a loaded machine goes back further, as a held key does)
+    xdotool mousemove --window "$window" 1200 100
+    previous=$t1
+    for press in 1 2 3; do
+      tap Left
+      wait_until 10 "Left press $press to show an earlier state" \
+        '(( $(state scrub) >= 0 )) && holds "$(state time) < $previous"'
+      previous=$(state time)
+    done
+    # the log names every state shown: one saved state back each time, 0.0333 s apart within a
+    # step (the first step at or after each mark)
+    sed -n 's/.*history: t = \([0-9.e+-]*\) (state \([0-9]*\) of .*(key)$/\1 \2/p' "$log" |
+      awk '{ if (n++ && ($2 != i - 1 || t - $1 > 0.0343 || t - $1 < 0.0323)) bad = 1; t = $1; i = $2 }
+           END { exit !(n >= 3 && !bad) }' || fail "the Left presses did not go back one saved state at a time"
+    holds "$previous < $t1 - 2 * 0.0333" || fail "three Left presses show t = $previous"
+    [[ "$(state running)" == 0 ]] || fail "the history is not shown paused"
+    (( $(state step) < 4000 )) || fail "step $(state step) after going back"
+    [[ "$(state series_hash)" != "$hash" ]] || fail "an earlier state shows the series row of t = 4 s"
+    # Right: forward again
+    back3=$previous
+    tap Right
+    wait_until 10 "Right to show a later saved state" 'holds "$(state time) > $back3 && $(state time) <= $t1"'
+    # the slider pressed at a quarter of its width and dragged a little further left
+    read -r x0 y0 x1 y1 < <(awk '$1 == "widget" && $2 == "history_slider" { print $3, $4, $5, $6 }' "$widgets")
+    [[ -n "$x0" ]] || fail "no timeline slider"
+    yc=$(((y0 + y1) / 2))
+    xdotool mousemove --window "$window" $((x0 + (x1 - x0) / 4)) "$yc" mousedown 1 || fail "xdotool mousedown"
+    sleep 0.3
+    xdotool mousemove --window "$window" $((x0 + (x1 - x0) / 5)) "$yc" || fail "xdotool drag"
+    sleep 0.3
+    xdotool mouseup 1 || fail "xdotool mouseup"
+    wait_until 10 "the slider to show a state near t = 0.8 s" 'holds "$(state time) > 0.5 && $(state time) < 1.1"'
+    sleep 0.5
+    t2=$(state time)
+    [[ "$(state running)" == 0 ]] || fail "the slider started the run"
+    ((kept < $(state history_states))) || fail "the live state was not kept when the history was shown"
+    # resumed from there: the later states are dropped, the run goes on; stepped to t = 4 s
+    click history_resume
+    wait_until 10 "Resume from here to run" '[[ "$(state running)" == 1 ]] && (( $(state scrub) == -1 ))'
+    (( $(state history_states) < kept )) || fail "$(state history_states) states after resuming at t = $t2, $kept before"
+    click step_to
+    wait_until 30 "Step to t to reach t = 4 s again" '(( $(state step) == 4000 )) && [[ "$(state running)" == 0 ]]'
+    [[ "$(state time)" == "$t1" ]] || fail "t = $(state time), the first run was at $t1"
+    echo "t = $t1 (series $hash), back to t = $t2 with Left, Right and the slider, resumed: series $(state series_hash)"
+    [[ "$(state series_hash)" == "$hash" ]] || fail "the resumed run's series row at t = 4 s differs from the first run's"
+    grep -q "history: t = .* (key)" "$log" || fail "the Left presses are not in the log"
+    grep -q "resume (ui) from t = .*later history states dropped" "$log" || fail "the resume is not in the log"
     quit
     ;;
   contacts)

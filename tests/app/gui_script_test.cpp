@@ -68,7 +68,11 @@ TEST(GuiScript, RejectsBadActionsNamingThem) {
                        "cut 0 0 1 y@1",    // not a number
                        "plot@1",           // plot needs a column
                        "plot a b c@1",     // at most Y and X
-                       "inspect@1"};       // inspect needs a body (or none)
+                       "inspect@1",        // inspect needs a body (or none)
+                       "history@1",        // history needs an interval
+                       "history 0.01 x@1", // not a number
+                       "back two@1",       // not a number
+                       "scrub@1"};         // scrub needs a time
   for (const char* script : bad) {
     try {
       parse_script(script);
@@ -88,6 +92,15 @@ TEST(GuiScript, ParsesThePlotKnifeAndInspectorActions) {
   EXPECT_EQ(a[1].args.size(), 4u);
   EXPECT_EQ(a[2].args, (std::vector<std::string>{"bob"}));
   EXPECT_EQ(a[3].args.size(), 1u);
+}
+
+TEST(GuiScript, ParsesTheHistoryActions) {
+  const std::vector<ScriptAction> a = parse_script("history 0.0333 64@1; back@2; back 3@3; scrub 0.5@4; resume@5");
+  ASSERT_EQ(a.size(), 5u);
+  EXPECT_EQ(a[0].args, (std::vector<std::string>{"0.0333", "64"}));
+  EXPECT_TRUE(a[1].args.empty());
+  EXPECT_EQ(a[2].args, (std::vector<std::string>{"3"}));
+  EXPECT_EQ(a[3].verb, "scrub");
 }
 
 }  // namespace

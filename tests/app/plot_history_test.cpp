@@ -30,6 +30,17 @@ TEST(PlotHistory, OnePointPerStepShown) {
   EXPECT_EQ(h.size(), 1u);
 }
 
+// A state from the window's history shown: the rows after it go, the state's own row comes next.
+TEST(PlotHistory, GoingBackDropsTheRowsAfterTheStateShown) {
+  PlotHistory h(100);
+  for (long k = 1; k <= 10; ++k) h.add(at_step(k), 1.0);
+  h.drop_from(at_step(4).time);
+  EXPECT_EQ(h.values(h.index_of("kinetic")), (std::vector<double>{1.0, 2.0, 3.0}));
+  h.add(at_step(4), 1.0);   // the state shown
+  h.add(at_step(5), 1.0);   // and the run resumed from it
+  EXPECT_EQ(h.values(h.index_of("kinetic")), (std::vector<double>{1.0, 2.0, 3.0, 4.0, 5.0}));
+}
+
 TEST(PlotHistory, KeepsEverySeriesColumnOfTheSnapshot) {
   PlotHistory h(100);
   auto columns = std::make_shared<const std::vector<std::string>>(

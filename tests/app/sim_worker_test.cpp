@@ -25,6 +25,7 @@ struct FakeLog {
   long applied_during_step = 0;
   std::thread::id step_thread, apply_thread;
   bool threads_differ = false;
+  long saves = 0, restores = 0;   // of the whole state (the history)
 };
 
 class FakeModel final : public SteppedModel {
@@ -75,6 +76,18 @@ class FakeModel final : public SteppedModel {
     log_.events.push_back("apply " + std::to_string(static_cast<long>(s.bond_damping)));
   }
   double set_mouse_spring(const std::optional<MouseSpring>&) override { return 0.0; }
+  bool save_state(SimState& out) const override {
+    ++log_.saves;
+    out.time = time_;
+    out.steps = steps_;
+    return true;
+  }
+  bool restore_state(const SimState& in) override {
+    ++log_.restores;
+    time_ = in.time;
+    steps_ = in.steps;
+    return true;
+  }
 
  private:
   FakeLog& log_;
@@ -338,6 +351,84 @@ TEST(SimWorker, RecordingGoesOnFromTheStartAfterReset) {
     else std::this_thread::sleep_for(1ms);
   }
   EXPECT_EQ(steps, (std::vector<long>{3, 0, 2}));
+  worker.stop();
+}
+
+// The history's cadence off costs no solver time: not one state is taken while stepping. On,
+// a state is taken at each mark.
+TEST(SimWorker, HistoryOffTakesNoStateWhileStepping) {
+  const auto saves_over = [](double interval) {
+    FakeLog log;
+    EventLog events(false);
+    {
+      SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+      worker.start(false, 0.0);
+      SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
+      history.number = interval;
+      history.count = 64;
+      worker.send(history);
+      SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
+      step.count = 5000;
+      worker.send(step);
+      EXPECT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 5000; }));
+      EXPECT_EQ(worker.status().history_interval, interval);
+      worker.stop();
+    }
+    return log.saves;
+  };
+  // the start state, taken when the worker starts under the scene's own cadence, and nothing after
+  EXPECT_EQ(saves_over(0.0), 1);
+  // marks at 0.01, ..., 5.0 besides the start (kept already at the mark at 0)
+  EXPECT_EQ(saves_over(0.01), 1 + 500);
+}
+
+// Left steps back through the states kept, Right forward, a time picks the nearest state; all
+// paused. Resuming drops the states after the one shown and runs from it.
+TEST(SimWorker, ScrubbingShowsKeptStatesAndResumeDropsTheFuture) {
+  FakeLog log;
+  EventLog events(false);
+  SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
+  worker.start(false, 0.0);
+  SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
+  history.number = 0.1;
+  history.count = 64;
+  worker.send(history);
+  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
+  step.count = 1050;
+  worker.send(step);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 1050; }));
+  // 0, 0.1, ..., 1.0: eleven states
+  EXPECT_EQ(worker.status().history_states, 11u);
+  SimCommand back = SimCommand::make(SimCommand::Kind::kScrubStep, "test");
+  back.count = -1;
+  for (int k = 0; k < 3; ++k) worker.send(back);
+  // the live state (1.05) kept, then three back: 0.8
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.scrub >= 0 && s.step == 800; }));
+  EXPECT_EQ(worker.status().history_states, 12u);
+  EXPECT_FALSE(worker.status().running);
+  SimCommand forward = SimCommand::make(SimCommand::Kind::kScrubStep, "test");
+  forward.count = 1;
+  worker.send(forward);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 900; }));
+  SimCommand to = SimCommand::make(SimCommand::Kind::kScrub, "test");
+  to.number = 0.42;
+  worker.send(to);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 400; }));
+  EXPECT_NEAR(worker.status().time, 0.4, 1e-12);
+  // forward to the end comes back to the live state
+  for (int k = 0; k < 20; ++k) worker.send(forward);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 1050; }));
+  worker.send(to);
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 400; }));
+  // resumed: the states after 0.4 are gone, and the run goes on from step 400
+  worker.send(SimCommand::make(SimCommand::Kind::kResume, "test"));
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.scrub < 0 && s.running; }));
+  worker.send(SimCommand::make(SimCommand::Kind::kPause, "test"));
+  ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return !s.running; }));
+  const WorkerStatus s = worker.status();
+  EXPECT_GE(s.step, 400);
+  EXPECT_LE(s.history_last, s.time);
+  EXPECT_EQ(s.history_states, 5u + static_cast<size_t>((s.time + 1e-9) / 0.1) - 4u);
   worker.stop();
 }
 

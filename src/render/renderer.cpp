@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include "render/deformation.h"
+#include "render/plot_drawing.h"
+#include "render/plot_history.h"
 #include "render/gl.h"
 #include "render/image.h"
 #include "render/solid_mesh.h"
@@ -111,12 +113,19 @@ struct Renderer::Impl {
 
   // particle positions drawn: the snapshot's, or magnified ones (render/deformation.h)
   std::vector<float> shown_x, shown_y;
+  // how each body is drawn moved with its magnified particles (empty: where it is)
+  std::vector<RigidShift> body_shift;
   double deform_used = 1.0;
   double pixel_world = 0.0;        // of the last draw, for the scale bar
   // the automatic factor only shrinks during a run, so a movie does not jump back and forth
   const SceneGeometry* deform_geometry = nullptr;
   double deform_time = -1e300;
   double auto_deform = kMaxAutoDeform;
+
+  // the plot over recorded frames: the rows of the snapshots drawn since the scene or time changed
+  PlotHistory plot_history;
+  const SceneGeometry* plot_geometry = nullptr;
+  double plot_time = -1e300;
 
   // trails: one polyline per rigid body centre and per probe
   const SceneGeometry* trail_geometry = nullptr;
@@ -133,6 +142,8 @@ struct Renderer::Impl {
   void draw_particles(const Snapshot& s, const RenderSettings& settings, const float projection[16],
                       double pixel_world);
   void build_bodies(const Snapshot& s, bool virtual_bodies);
+  void draw_frame_plot(ImDrawList& list, const Snapshot& s, const RenderSettings& settings, int width, int height);
+  Vec2 shown_point(int body, const Vec2& p) const;
   void build_overlay_geometry(const Snapshot& s, const RenderSettings& settings);
 };
 
@@ -234,9 +245,16 @@ void Renderer::Impl::update_deformation(const Snapshot& s, const RenderSettings&
   if (factor == 1.0) {
     shown_x = s.px;
     shown_y = s.py;
+    body_shift.clear();
   } else {
     magnify_deformation(s, factor, shown_x, shown_y);
+    body_shift = magnified_body_shifts(s, shown_x, shown_y);
   }
+}
+
+// a point carried by geometry body `body`, where the drawing shows it
+Vec2 Renderer::Impl::shown_point(int body, const Vec2& p) const {
+  return body > 0 && static_cast<size_t>(body) < body_shift.size() ? body_shift[body].apply(p) : p;
 }
 
 void Renderer::Impl::record_trails(const Snapshot& s, int max_points) {
@@ -359,9 +377,11 @@ void Renderer::Impl::build_bodies(const Snapshot& s, bool virtual_bodies) {
     const SceneGeometry::Body& body = s.geometry->bodies[k];
     if (body.is_virtual != virtual_bodies) continue;
     const Snapshot::Pose& pose = s.bodies[k];
-    const Vec2 position(pose.x, pose.y);
+    // a virtual body moves with its magnified particles (identity otherwise)
+    const Vec2 position = shown_point(static_cast<int>(k), Vec2(pose.x, pose.y));
+    const double angle = pose.angle + (k < body_shift.size() ? body_shift[k].angle : 0.0);
     for (const ShapeDef& shape : body.shapes) {
-      const std::vector<Vec2> outline = shape_outline(shape, position, pose.angle);
+      const std::vector<Vec2> outline = shape_outline(shape, position, angle);
       if (outline.size() < 2) continue;
       if (body.is_virtual) {
         // virtual bodies: see-through fill, dashed edge
@@ -376,8 +396,8 @@ void Renderer::Impl::build_bodies(const Snapshot& s, bool virtual_bodies) {
       }
       // a radius line shows how circles turn
       if (shape.kind == ShapeDef::Kind::kCircle && !body.ground)
-        mesh.line(position + rotation(pose.angle) * shape.center,
-                  position + rotation(pose.angle) * (shape.center + Vec2(shape.radius, 0.0)), 1.5,
+        mesh.line(position + rotation(angle) * shape.center,
+                  position + rotation(angle) * (shape.center + Vec2(shape.radius, 0.0)), 1.5,
                   body.is_virtual ? kVirtualEdge : kBodyEdge);
     }
   }
@@ -413,7 +433,15 @@ void Renderer::Impl::build_overlay_geometry(const Snapshot& s, const RenderSetti
   }
   if (settings.show_markers) {
     using Kind = Snapshot::Marker::Kind;
-    for (const auto& m : s.markers) {
+    for (const auto& marker : s.markers) {
+      // markers on a virtual body move with it
+      // (a joint drawn at one point, between a virtual body and another, is drawn on the virtual one)
+      Snapshot::Marker m = marker;
+      const auto moves = [&](int b) { return b > 0 && static_cast<size_t>(b) < body_shift.size() && body_shift[b].moves; };
+      const bool one_point = m.kind == Kind::kRevolute || m.kind == Kind::kRigid;
+      m.a = !one_point || moves(marker.body_a) || !moves(marker.body_b) ? shown_point(marker.body_a, marker.a)
+                                                                        : shown_point(marker.body_b, marker.b);
+      m.b = shown_point(marker.body_b, marker.b);
       switch (m.kind) {
         case Kind::kRevolute:
           mesh.disc_px(m.a, 4.5, kJoint);
@@ -553,6 +581,26 @@ std::string format_length(double metres) {
 
 }  // namespace
 
+void Renderer::Impl::draw_frame_plot(ImDrawList& list, const Snapshot& s, const RenderSettings& settings, int width,
+                                     int height) {
+  // a new history when the scene changes or time runs backwards (reset, reload)
+  if (s.geometry.get() != plot_geometry || s.time < plot_time) {
+    plot_history.clear();
+    plot_geometry = s.geometry.get();
+  }
+  plot_time = s.time;
+  plot_history.add(s, 0.0);
+  PlotView view;
+  view.x_column = "t";
+  view.y_columns = settings.plot_columns;
+  view.cursor_time = s.time;
+  if (!plot_column_range(plot_history, "t", view.x_lo, view.x_hi)) return;
+  // at the top right, its margins and text growing with frames taller than 720 pixels
+  const float scale = std::max(1.0f, height / 720.0f);
+  const float w = std::min(0.45f * width, 600.0f * scale), h = std::min(0.4f * height, 300.0f * scale);
+  draw_plot(list, ImVec2(width - w - 8.0f, 8.0f), ImVec2(w, h), plot_history, view, scale);
+}
+
 void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height) {
   if (!settings.show_overlay) return;
   ImDrawList* dl = ImGui::GetForegroundDrawList();
@@ -593,6 +641,9 @@ void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& sett
     dl->AddLine(ImVec2(x1, yb - 5), ImVec2(x1, yb + 1), white, 2.0f);
     dl->AddText(ImVec2(0.5f * (x0 + x1 - label_w), yb - font - 6), white, label.c_str());
   }
+
+  // top right: the plot of the chosen series.csv columns against time
+  if (!settings.plot_columns.empty()) impl_->draw_frame_plot(*dl, snapshot, settings, width, height);
 
   // bottom left: colour legend of the particle field, with its unit
   if (snapshot.px.empty()) return;

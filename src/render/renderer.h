@@ -58,6 +58,9 @@ struct RenderSettings {
   // (kAutoDeform): chosen from the picture, never growing during a run.
   float deform = 1.0f;
   int trail_length = 400;          // points kept per trail (probes and rigid-body centres)
+  // series.csv columns drawn against time in a plot at the overlay's top right (empty: none);
+  // the renderer keeps the history of the snapshots it drew (render/plot_drawing.h)
+  std::vector<std::string> plot_columns;
   float background[3] = {0.12f, 0.12f, 0.14f};
 };
 
@@ -73,7 +76,8 @@ class Renderer {
   // std::runtime_error for an unknown colour map name (colormap_names() lists the valid ones).
   void draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings,
             int width, int height);
-  // Draws the overlay (time, scene name, deformation factor, colour legend, scale bar) with Dear ImGui's draw lists;
+  // Draws the overlay (time, scene name, deformation factor, colour legend, scale bar, and the
+  // plot of settings.plot_columns) with Dear ImGui's draw lists;
   // call between ImGui::NewFrame() and ImGui::Render().
   void draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height);
   // Colour range used by the last draw (auto or fixed).

@@ -1,5 +1,6 @@
 #include "cli/frame_sink.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -13,6 +14,35 @@
 #endif
 
 namespace periflex {
+
+namespace {
+
+// "a,b" -> {"a", "b"}; empty names kept (to be refused)
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> parts;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    parts.push_back(text.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return parts;
+}
+
+}  // namespace
+
+std::vector<std::string> check_plot_columns(const std::string& text, const std::vector<std::string>& columns) {
+  const std::vector<std::string> chosen = split_commas(text);
+  for (const std::string& name : chosen) {
+    if (std::find(columns.begin(), columns.end(), name) != columns.end()) continue;
+    std::string known;
+    for (const std::string& c : columns) known += (known.empty() ? "" : ", ") + c;
+    throw InputError({"command line", 0, 0, "--plot"},
+                     (name.empty() ? std::string("an empty column name") : "unknown column '" + name + "'") + " in '" +
+                         text + "'; this scene's series.csv has: " + known);
+  }
+  return chosen;
+}
 
 #ifndef PERIFLEX_WITH_HEADLESS
 
@@ -101,6 +131,8 @@ std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std:
   parse_camera(options.camera, recorder);
   if (!options.colormap.empty()) recorder.settings.colormap = options.colormap;
   recorder.settings.show_contacts = options.draw_contacts;
+  // the snapshots carry series.csv's row (run_command checked the names against it)
+  if (!options.plot.empty()) recorder.settings.plot_columns = split_commas(options.plot);
   double deform = -1.0;
   if (!parse_deform(options.deform, deform))
     throw InputError({"command line", 0, 0, "--deform"}, parse_deform_check(options.deform));

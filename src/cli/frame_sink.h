@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/run_command.h"
 #include "solve/snapshot.h"
@@ -35,6 +36,10 @@ class FrameSink {
 // Checks what can be checked before simulating (ffmpeg present, output writable, sizes valid);
 // throws InputError. Then creates the sink: multisampling as options.samples says, or when that is
 // 0 as default_samples() of the geometry's particle count.
+// The columns of `--plot A,B`, each checked against series.csv's `columns`; throws InputError
+// naming the flag and the columns there are.
+std::vector<std::string> check_plot_columns(const std::string& text, const std::vector<std::string>& columns);
+
 std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std::string& out_dir,
                                            std::shared_ptr<const SceneGeometry> geometry);
 

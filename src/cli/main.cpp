@@ -66,6 +66,10 @@ void add_render_options(CLI::App* command, RunOptions& o) {
                       "default), fit (fit the first frame and keep it), or X,Y,HEIGHT (fixed, metres)");
   add_deform_option(command, o.deform);
   command->add_flag("--draw-contacts", o.draw_contacts, "Draw the active contacts (a dot and a stroke along the force)");
+  command->add_option("--plot", o.plot,
+                      "Draw a plot of series.csv columns against time into the frames, e.g. "
+                      "driver_work,fracture (the window's plot: axes, units, a legend)")
+      ->type_name("COLUMN[,COLUMN]");
 }
 
 int run_main(int argc, char** argv) {

@@ -23,6 +23,7 @@
 #include "core/sim_time.h"
 #include "output/atomic_file.h"
 #include "output/checkpoint_file.h"
+#include "output/series_row.h"
 #include "output/series_writer.h"
 #include "output/summary_writer.h"
 #include "output/vtk_series.h"
@@ -197,6 +198,8 @@ int run_command(const RunOptions& requested) {
     const bool shot_due = snapshot_time && time_reached(t, *snapshot_time, dt);
     const bool vtk_due = outputs.vtk && sim.step_count() % options.vtk_every == 0;
     if (frame_due || shot_due || vtk_due) sim.fill_snapshot(snapshot);
+    if ((frame_due || shot_due) && snapshot.series_columns)
+      series_values(sim.sample(), has_particles, !sim.scene().contacts.empty(), snapshot.series);
     if (frame_due) {
       outputs.frames->submit(snapshot);
       frame_times.advance_past(t, dt);
@@ -224,6 +227,13 @@ int run_command(const RunOptions& requested) {
   try {
     series = std::make_unique<SeriesWriter>(out_dir + "/series.csv", sim.probe_columns(), has_particles,
                                             !sim.scene().contacts.empty());
+    // --plot: the frames' snapshots carry the row series.csv holds (its columns named by the flag)
+    if (!options.plot.empty()) {
+      auto columns = std::make_shared<const std::vector<std::string>>(
+          series_columns(sim.probe_columns(), has_particles, !sim.scene().contacts.empty()));
+      check_plot_columns(options.plot, *columns);
+      snapshot.series_columns = std::move(columns);
+    }
     // rendering and VTK output are optional; the sink checks its own preconditions first
     if (options.render || options.snapshot_at) {
       sim.fill_snapshot(snapshot);

@@ -97,6 +97,8 @@ void check_run_values(const RunOptions& o) {
       fail("--colormap", "unknown colour map '" + o.colormap + "'; expected one of: " + join(names));
   }
   if (!parse_deform_check(o.deform).empty()) fail("--deform", parse_deform_check(o.deform));
+  if (!o.plot.empty() && !o.render && !o.snapshot_at)
+    fail("--plot", "draws into rendered frames: it needs --render or --snapshot-at");
   if (!o.field.empty()) {
     const std::vector<std::string> fields = {"damage", "displacement", "speed", "strain"};
     if (std::find(fields.begin(), fields.end(), o.field) == fields.end())

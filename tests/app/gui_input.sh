@@ -366,6 +366,8 @@ case "$case_name" in
     if [[ -n "$png_check" ]]; then
       "$png_check" k0.png --lower-edge-spread 0 3 || fail "the undeformed plate's lower edge is not flat"
       "$png_check" k100.png --lower-edge-spread 20 1000 || fail "the magnified plate's lower edge does not bend"
+      # the grips (virtual bodies) drawn with the particles they hold, not at their true place
+      "$png_check" k100.png --grip-holds || fail "the magnified plate's left grip does not hold its particles"
     fi
     ;;
   teach)

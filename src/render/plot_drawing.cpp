@@ -60,9 +60,11 @@ bool plot_column_range(const PlotHistory& history, const std::string& column, do
     hi = std::max(hi, v);
   }
   if (lo > hi) return false;
+  // a flat column: 5% of its value each side, or [-1, 1] about zero
   if (hi <= lo) {
-    lo -= lo != 0.0 ? 0.05 * std::fabs(lo) : 1.0;
-    hi = lo + (lo != 0.0 ? 0.1 * std::fabs(lo) : 2.0);
+    const double pad = lo != 0.0 ? 0.05 * std::fabs(lo) : 1.0;
+    hi = lo + pad;
+    lo -= pad;
   }
   return true;
 }

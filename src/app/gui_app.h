@@ -12,7 +12,7 @@
 #include "app/file_watch.h"
 #include "app/gui.h"
 #include "app/gui_script.h"
-#include "app/plot_history.h"
+#include "render/plot_history.h"
 #include "app/sim_worker.h"
 #include "app/view_fit.h"
 #include "app/widget_dump.h"
@@ -131,6 +131,7 @@ class GuiApp {
   PlotHistory history_;
   bool show_plot_ = false;          // the plot window (P)
   std::string plot_x_ = "t", plot_y_ = "kinetic";  // series.csv columns plotted
+  std::vector<std::string> plot_more_;              // further series beside plot_y_, same x
   bool plot_zoomed_ = false;        // false: x spans the whole history
   double plot_x_lo_ = 0.0, plot_x_hi_ = 1.0;
   char plot_path_[512] = "plot";    // exports go to <this>.csv and <this>.png

@@ -78,6 +78,46 @@ void magnify_deformation(const Snapshot& s, double factor, std::vector<float>& x
   });
 }
 
+Vec2 RigidShift::apply(const Vec2& p) const {
+  const double c = std::cos(angle), s = std::sin(angle);
+  const Vec2 a = p - from;
+  return to + Vec2(c * a.x() - s * a.y(), s * a.x() + c * a.y());
+}
+
+std::vector<RigidShift> magnified_body_shifts(const Snapshot& s, const std::vector<float>& x,
+                                              const std::vector<float>& y) {
+  if (!s.geometry) return {};
+  const SceneGeometry& g = *s.geometry;
+  std::vector<RigidShift> shifts(g.bodies.size());
+  const size_t n = std::min({s.px.size(), s.py.size(), x.size(), y.size(), g.particle_body.size()});
+  for (size_t b = 1; b < g.bodies.size(); ++b) {
+    if (!g.bodies[b].is_virtual) continue;
+    // the centroids of its particles, true and magnified (double sums, as in fit_rigid)
+    double cx = 0, cy = 0, mx = 0, my = 0;
+    long count = 0;
+    for (size_t i = 0; i < n; ++i) {
+      if (g.particle_body[i] != static_cast<int>(b)) continue;
+      cx += s.px[i], cy += s.py[i], mx += x[i], my += y[i];
+      ++count;
+    }
+    if (count == 0) continue;
+    cx /= count, cy /= count, mx /= count, my /= count;
+    // the turn between them (2D Procrustes)
+    double dot = 0.0, cross = 0.0;
+    for (size_t i = 0; i < n; ++i) {
+      if (g.particle_body[i] != static_cast<int>(b)) continue;
+      const double ax = s.px[i] - cx, ay = s.py[i] - cy, bx = x[i] - mx, by = y[i] - my;
+      dot += ax * bx + ay * by;
+      cross += ax * by - ay * bx;
+    }
+    shifts[b].from = Vec2(cx, cy);
+    shifts[b].to = Vec2(mx, my);
+    shifts[b].angle = (dot == 0.0 && cross == 0.0) ? 0.0 : std::atan2(cross, dot);
+    shifts[b].moves = true;
+  }
+  return shifts;
+}
+
 double largest_relative_deformation(const Snapshot& s) {
   double largest = 0.0;
   for_each_body(s, [&](size_t first, size_t count) {

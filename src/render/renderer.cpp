@@ -90,12 +90,15 @@ struct Renderer::Impl {
 
   // particle positions drawn: the snapshot's, or magnified ones (render/deformation.h)
   std::vector<float> shown_x, shown_y;
+  // how each body is drawn moved with its magnified particles (empty: where it is)
+  std::vector<RigidShift> body_shift;
   double deform_used = 1.0;
   double pixel_world = 0.0;        // of the last draw, for the scale bar
   // the automatic factor only shrinks during a run, so a movie does not jump back and forth
   const SceneGeometry* deform_geometry = nullptr;
   double deform_time = -1e300;
   double auto_deform = kMaxAutoDeform;
+
 
   // trails: one polyline per rigid body centre and per probe
   const SceneGeometry* trail_geometry = nullptr;
@@ -112,6 +115,7 @@ struct Renderer::Impl {
   void draw_particles(const Snapshot& s, const RenderSettings& settings, const float projection[16],
                       double pixel_world);
   void build_bodies(const Snapshot& s, bool virtual_bodies);
+  Vec2 shown_point(int body, const Vec2& p) const;
   void build_overlay_geometry(const Snapshot& s, const RenderSettings& settings);
 };
 
@@ -213,9 +217,16 @@ void Renderer::Impl::update_deformation(const Snapshot& s, const RenderSettings&
   if (factor == 1.0) {
     shown_x = s.px;
     shown_y = s.py;
+    body_shift.clear();
   } else {
     magnify_deformation(s, factor, shown_x, shown_y);
+    body_shift = magnified_body_shifts(s, shown_x, shown_y);
   }
+}
+
+// a point carried by geometry body `body`, where the drawing shows it
+Vec2 Renderer::Impl::shown_point(int body, const Vec2& p) const {
+  return body > 0 && static_cast<size_t>(body) < body_shift.size() ? body_shift[body].apply(p) : p;
 }
 
 void Renderer::Impl::record_trails(const Snapshot& s, int max_points) {
@@ -338,9 +349,11 @@ void Renderer::Impl::build_bodies(const Snapshot& s, bool virtual_bodies) {
     const SceneGeometry::Body& body = s.geometry->bodies[k];
     if (body.is_virtual != virtual_bodies) continue;
     const Snapshot::Pose& pose = s.bodies[k];
-    const Vec2 position(pose.x, pose.y);
+    // a virtual body moves with its magnified particles (identity otherwise)
+    const Vec2 position = shown_point(static_cast<int>(k), Vec2(pose.x, pose.y));
+    const double angle = pose.angle + (k < body_shift.size() ? body_shift[k].angle : 0.0);
     for (const ShapeDef& shape : body.shapes) {
-      const std::vector<Vec2> outline = shape_outline(shape, position, pose.angle);
+      const std::vector<Vec2> outline = shape_outline(shape, position, angle);
       if (outline.size() < 2) continue;
       if (body.is_virtual) {
         // virtual bodies: see-through fill, dashed edge
@@ -355,8 +368,8 @@ void Renderer::Impl::build_bodies(const Snapshot& s, bool virtual_bodies) {
       }
       // a radius line shows how circles turn
       if (shape.kind == ShapeDef::Kind::kCircle && !body.ground)
-        mesh.line(position + rotation(pose.angle) * shape.center,
-                  position + rotation(pose.angle) * (shape.center + Vec2(shape.radius, 0.0)), 1.5,
+        mesh.line(position + rotation(angle) * shape.center,
+                  position + rotation(angle) * (shape.center + Vec2(shape.radius, 0.0)), 1.5,
                   body.is_virtual ? kVirtualEdge : kBodyEdge);
     }
   }
@@ -392,7 +405,15 @@ void Renderer::Impl::build_overlay_geometry(const Snapshot& s, const RenderSetti
   }
   if (settings.show_markers) {
     using Kind = Snapshot::Marker::Kind;
-    for (const auto& m : s.markers) {
+    for (const auto& marker : s.markers) {
+      // markers on a virtual body move with it
+      // (a joint drawn at one point, between a virtual body and another, is drawn on the virtual one)
+      Snapshot::Marker m = marker;
+      const auto moves = [&](int b) { return b > 0 && static_cast<size_t>(b) < body_shift.size() && body_shift[b].moves; };
+      const bool one_point = m.kind == Kind::kRevolute || m.kind == Kind::kRigid;
+      m.a = !one_point || moves(marker.body_a) || !moves(marker.body_b) ? shown_point(marker.body_a, marker.a)
+                                                                        : shown_point(marker.body_b, marker.b);
+      m.b = shown_point(marker.body_b, marker.b);
       switch (m.kind) {
         case Kind::kRevolute:
           mesh.disc_px(m.a, 4.5, kJoint);

@@ -817,17 +817,23 @@ void Simulation::fill_snapshot(Snapshot& out) const {
       g->particle_volume.insert(g->particle_volume.end(), flex->volumes().begin(), flex->volumes().end());
     }
     g->particle_attached.assign(first, 0);
+    g->particle_body.assign(first, 0);
     std::vector<int> coords;
     for (const auto& block : m.constraints) {
       if (block.origin != ConstraintBlock::Origin::kAttachment) continue;
       coords.clear();
       block.constraint->coordinates(coords);
+      // the rigid body's coordinates come first (x, y, phi of rigid body c / 3: geometry index + 1)
+      int holder = 0;
+      for (int c : coords)
+        if (c >= 0 && c < m.rigid_coordinates) holder = c / 3 + 1;
       for (int c : coords) {
         if (c < m.rigid_coordinates) continue;
         for (size_t f = 0; f < m.flex_bodies.size(); ++f) {
           const int off = m.flex_bodies[f]->coordinate_offset();
           if (c >= off && c < off + 2 * m.flex_bodies[f]->particle_count()) {
             g->particle_attached[g->flex_bodies[f].first_particle + (c - off) / 2] = 1;
+            g->particle_body[g->flex_bodies[f].first_particle + (c - off) / 2] = holder;
           }
         }
       }
@@ -916,7 +922,8 @@ void Simulation::fill_snapshot(Snapshot& out) const {
 
   // joints, drivers, attachments, springs, probes
   out.markers.clear();
-  for (const auto& marker : m.markers) out.markers.push_back({marker.kind, marker.a.position(q), marker.b.position(q)});
+  for (const auto& marker : m.markers)
+    out.markers.push_back({marker.kind, marker.a.position(q), marker.b.position(q), marker.a.body + 1, marker.b.body + 1});
   out.springs.clear();
   for (const auto& line : m.spring_lines) out.springs.push_back({line.a.position(q), line.b.position(q)});
   out.probes.clear();

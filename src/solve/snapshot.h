@@ -30,6 +30,9 @@ struct SceneGeometry {
   };
   std::vector<FlexBody> flex_bodies;
   std::vector<uint8_t> particle_attached;  // 1 where a rigid-flexible joint holds the particle
+  // the body (index into `bodies`) whose rigid-flexible joint holds each particle, 0 for none
+  // (the drawing moves a virtual body with its particles when deformation is magnified)
+  std::vector<int> particle_body;
   std::vector<float> reference_x, reference_y;
   // the same in full precision (x0, y0, x1, y1, ...), and each particle's volume [m^3]: for the
   // writers, whose displacements must not lose digits to float
@@ -81,6 +84,7 @@ struct Snapshot {
     enum class Kind { kRevolute, kTranslational, kRigid, kLink, kDriver, kAttachment };
     Kind kind = Kind::kRevolute;
     Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // one point, or two for links and sliders
+    int body_a = 0, body_b = 0;  // the bodies (geometry indices, 0 the ground) carrying a and b
   };
   std::vector<Marker> markers;
   struct Spring { Vec2 a = Vec2::Zero(), b = Vec2::Zero(); };

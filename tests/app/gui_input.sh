@@ -9,7 +9,7 @@
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
 # CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect | plot |
-#       knife | body | contacts | history
+#       plot_series | knife | body | contacts | history
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}
@@ -155,6 +155,21 @@ record() {
   quit
   recorded=$(sed -n 's/.*recorded \([0-9]*\) frames.*/\1/p' "$log" | tail -n 1)
   [[ -n "$recorded" ]] && ((recorded >= 5)) || fail "the log reports no recording of 5 frames or more"
+}
+
+# a column chosen from a plot's list (once the list stands still: a list lays itself out over
+# its first frames); the plot then shows it (`state plot`: y column, x column, points; `state
+# plot_series`: every y column)
+pick() {
+  item="$1=$2" chosen=$2 at=""
+  click "$1"
+  wait_until 10 "the list of $1 in place" '[[ -n "$at" && "$at" == "$(centre "$item")" ]] || { at=$(centre "$item"); sleep 0.3; false; }'
+  click "$item"
+  case "$1" in
+    plot_y) wait_until 10 "$2 chosen for $1" '[[ -z "$(centre "$item")" && "$(state plot | cut -d " " -f 1)" == "$chosen" ]]' ;;
+    plot_x) wait_until 10 "$2 chosen for $1" '[[ -z "$(centre "$item")" && "$(state plot | cut -d " " -f 2)" == "$chosen" ]]' ;;
+    *) wait_until 10 "$2 added to the plot" '[[ -z "$(centre "$item")" && " $(state plot_series) " == *" $chosen "* ]]' ;;
+  esac
 }
 
 case "$case_name" in
@@ -422,6 +437,8 @@ case "$case_name" in
     if [[ -n "$png_check" ]]; then
       "$png_check" k0.png --lower-edge-spread 0 3 || fail "the undeformed plate's lower edge is not flat"
       "$png_check" k100.png --lower-edge-spread 20 1000 || fail "the magnified plate's lower edge does not bend"
+      # the grips (virtual bodies) drawn with the particles they hold, not at their true place
+      "$png_check" k100.png --grip-holds || fail "the magnified plate's left grip does not hold its particles"
     fi
     ;;
   teach)
@@ -518,16 +535,6 @@ case "$case_name" in
     wait_until 10 "P to open the plot window" '[[ -n "$(centre plot_canvas)" ]]'
     # a full swing from 60 degrees to -60 degrees and back (period about 2.1 s at 1x real time)
     wait_until 60 "a swing (t > 2.2 s)" 'holds "$(state time) > 2.2"'
-    # a column chosen from a plot's list (once the list stands still: a list lays itself out
-    # over its first frames); the plot then shows it (`state plot`: y column, x column, points)
-    pick() {
-      item="$1=$2" chosen=$2 word=1 at=""
-      [[ "$1" == plot_x ]] && word=2
-      click "$1"
-      wait_until 10 "the list of $1 in place" '[[ -n "$at" && "$at" == "$(centre "$item")" ]] || { at=$(centre "$item"); sleep 0.3; false; }'
-      click "$item"
-      wait_until 10 "$2 chosen for $1" '[[ -z "$(centre "$item")" && "$(state plot | cut -d " " -f $word)" == "$chosen" ]]'
-    }
     pick plot_y probe.bob.y
     pick plot_x probe.bob.x
     wait_until 10 "the bob's path plotted" '[[ "$(state plot)" == "probe.bob.y probe.bob.x "* ]]'
@@ -567,6 +574,51 @@ case "$case_name" in
              END { printf "%d rows in t %s .. %s\n", NR - 1, lo, hi; exit !(NR > 5 && bad == 0) }' bob.csv ||
       fail "the zoomed export holds points outside the range shown"
     (( $(wc -l < bob.csv) < rows )) || fail "the zoomed export is not shorter than the whole swing"
+    quit
+    ;;
+  plot_series)
+    # two series in one plot: the work the grips' drivers put into the notched plate and the
+    # fracture energy its crack releases, against time; exported as CSV with a column each, and
+    # every row compared with the series.csv that `periflex run` writes for the same scene
+    cd "$work" || fail "cd $work"
+    until=7e-4
+    start notched_plate.toml --set solver.end_time=$until
+    xdotool mousemove --window "$window" 1000 150
+    tap p
+    wait_until 10 "P to open the plot window" '[[ -n "$(centre plot_canvas)" ]]'
+    pick plot_y driver_work
+    pick plot_add fracture
+    [[ "$(state plot_series)" == "driver_work fracture" ]] || fail "plotted: $(state plot_series)"
+    wait_until 120 "the run to its end (t = $until s)" '[[ "$(state running)" == 0 ]] && holds "$(state time) >= $until - 1e-9"'
+    click plot_file
+    retype "$work/two"
+    field_key Return
+    click plot_csv
+    click plot_png
+    wait_until 10 "two.csv and two.png written" '[[ -s two.csv && -s two.png ]]'
+    sleep 0.5
+    [[ "$(head -n 1 two.csv)" == "t,driver_work,fracture" ]] || fail "two.csv header: $(head -n 1 two.csv)"
+    if [[ -n "$png_check" ]]; then
+      "$png_check" two.png || fail "two.png is blank"
+    fi
+    # the same run from the command line, a row of series.csv at every step
+    "$periflex" run "$scenes/notched_plate.toml" --set solver.end_time=$until --set solver.output_interval=4e-7 \
+      --quiet --out "$work/run" 2>>"$log" || fail "periflex run"
+    # every exported row at a time series.csv has, with its values (sums over threads may differ
+    # in their last digits); the crack released energy by the end
+    awk -F, 'NR == FNR { if (FNR == 1) { for (i = 1; i <= NF; ++i) col[$i] = i; next }
+                         work[$1] = $col["driver_work"]; frac[$1] = $col["fracture"]; next }
+             FNR == 1 { next }
+             { ++rows; if (!($1 in work)) { missing++; next }
+               dw = $2 - work[$1]; df = $3 - frac[$1]
+               if (dw * dw > (1e-6 * work[$1] + 1e-12)^2 || df * df > (1e-6 * frac[$1] + 1e-12)^2) bad++
+               if ($3 > top) top = $3 }
+             END { printf "%d rows, %d not in series.csv, %d differing; fracture energy %.4g J\n", rows, missing, bad, top;
+                   exit !(rows >= 10 && missing == 0 && bad == 0 && top > 0) }' run/series.csv two.csv ||
+      fail "the exported series are not those of series.csv"
+    # the second series removed: the plot holds the first alone
+    click plot_remove=fracture
+    wait_until 10 "fracture removed" '[[ "$(state plot_series)" == "driver_work" ]]'
     quit
     ;;
   knife)

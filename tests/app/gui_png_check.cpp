@@ -12,6 +12,8 @@
 //                                            recorded frames of a scene with particles
 //   gui_png_check IMAGE --no-overlay         the opposite, for a picture drawn without it
 //                                            (proves the overlay check can fail)
+//   gui_png_check IMAGE --grip-holds         the leftmost virtual body's outline encloses the
+//                                            particles it holds (a magnified deformation)
 //   gui_png_check IMAGE --lower-edge-spread MIN MAX
 //                                            the lowest drawn row of each column of the middle
 //                                            70 % of what is drawn varies by MIN to MAX pixels:
@@ -70,7 +72,7 @@ constexpr size_t kMinBarColours = 16;
 int usage() {
   std::fprintf(stderr,
                "usage: gui_png_check IMAGE [--crack SCENE | --no-crack SCENE | --overlay | --no-overlay |\n"
-               "                             --lower-edge-spread MIN MAX]\n");
+               "                             --lower-edge-spread MIN MAX | --grip-holds]\n");
   return 2;
 }
 
@@ -221,11 +223,53 @@ int lower_edge_spread(const RgbaImage& image) {
   return hi >= lo ? hi - lo : -1;
 }
 
+// Whether the leftmost grip (a virtual body: an orange dashed outline) encloses the particles it
+// holds (magenta rings), within 2 pixels, as it does when it is drawn with its magnified
+// particles. The held particles are the magenta pixels of the left half of their spread; the
+// outline is looked for within 40 pixels of them (clear of the legend's orange).
+bool grip_holds_its_particles(const RgbaImage& image) {
+  const auto magenta = [](const uint8_t* p) { return p[0] > 170 && p[1] < 140 && p[2] > 170; };
+  const auto orange = [](const uint8_t* p) { return p[0] > 200 && p[1] > 140 && p[1] < 200 && p[2] < 110; };
+  int lo = image.width, hi = -1;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x)
+      if (magenta(image.at(x, y))) lo = std::min(lo, x), hi = std::max(hi, x);
+  if (hi < lo) {
+    std::printf("no held particles drawn\n");
+    return false;
+  }
+  int held[4] = {image.width, image.height, -1, -1}, grip[4] = {image.width, image.height, -1, -1};
+  for (int y = 0; y < image.height; ++y)
+    for (int x = lo; x <= (lo + hi) / 2; ++x)
+      if (magenta(image.at(x, y)))
+        held[0] = std::min(held[0], x), held[1] = std::min(held[1], y), held[2] = std::max(held[2], x),
+        held[3] = std::max(held[3], y);
+  for (int y = std::max(0, held[1] - 40); y < std::min(image.height, held[3] + 40); ++y)
+    for (int x = std::max(0, held[0] - 40); x < std::min(image.width, held[2] + 40); ++x)
+      if (orange(image.at(x, y)))
+        grip[0] = std::min(grip[0], x), grip[1] = std::min(grip[1], y), grip[2] = std::max(grip[2], x),
+        grip[3] = std::max(grip[3], y);
+  std::printf("held particles x %d..%d y %d..%d, grip outline x %d..%d y %d..%d\n", held[0], held[2], held[1],
+              held[3], grip[0], grip[2], grip[1], grip[3]);
+  return grip[2] >= grip[0] && grip[0] <= held[0] + 2 && grip[2] >= held[2] - 2 && grip[1] <= held[1] + 2 &&
+         grip[3] >= held[3] - 2;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2 || argc > 5) return usage();
   const std::string mode = argc >= 3 ? argv[2] : "";
+  if (mode == "--grip-holds") {
+    try {
+      const bool ok = argc == 3 && grip_holds_its_particles(read_png(argv[1]));
+      std::printf("%s: the grip %s its particles: %s\n", argv[1], ok ? "holds" : "does not hold", ok ? "PASS" : "FAIL");
+      return ok ? 0 : 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gui_png_check: %s\n", e.what());
+      return 1;
+    }
+  }
   if (mode == "--lower-edge-spread") {
     if (argc != 5) return usage();
     try {

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -76,6 +77,43 @@ TEST(DeformationRender, NotchedPlateLowerEdgeMovesAtHundredfoldAndNotAtZero) {
   // at true scale the bending is invisible: that is why the magnification exists
   EXPECT_LE(largest_true, 1);
   EXPECT_GE(largest_magnified, 8);
+}
+
+// The box (x0, y0, x1, y1) of the pixels around the plate's left end matching `is`; x0 > x1
+// when none does.
+template <class Colour>
+std::array<int, 4> left_end_box(const RgbaImage& image, Colour is) {
+  // the band of the plate's height and 15 mm more each way, left of the notch's damage
+  std::array<int, 4> box = {kWidth, kHeight, -1, -1};
+  const int band = int(0.035 / kMetresPerPixel);
+  for (int y = kHeight / 2 - band; y < kHeight / 2 + band; ++y)
+    for (int x = 0; x < kWidth / 2 - int(0.02 / kMetresPerPixel); ++x) {
+      const uint8_t* p = image.at(x, y);
+      if (!is(p[0], p[1], p[2])) continue;
+      box = {std::min(box[0], x), std::min(box[1], y), std::max(box[2], x), std::max(box[3], y)};
+    }
+  return box;
+}
+
+TEST(DeformationRender, NotchedPlateGripsMoveWithTheirMagnifiedParticles) {
+  // at K = 100 the plate's ends swing far from their true places; the left grip (a virtual
+  // body, drawn with an orange dashed edge) must still enclose the particles it holds (drawn
+  // with magenta rings), not stay behind where the true grip is
+  const RgbaImage magnified = screenshot("100");
+  const auto held = left_end_box(magnified, [](int r, int g, int b) { return r > 170 && g < 140 && b > 170; });
+  const auto grip = left_end_box(magnified, [](int r, int g, int b) {
+    return r > 200 && g > 140 && g < 200 && b < 110;
+  });
+  ASSERT_LE(held[0], held[2]) << "no held particle drawn";
+  ASSERT_LE(grip[0], grip[2]) << "no grip drawn";
+  std::printf("held particles x %d..%d y %d..%d, grip x %d..%d y %d..%d\n", held[0], held[2], held[1], held[3],
+              grip[0], grip[2], grip[1], grip[3]);
+  // the held column, 3 mm wide, leans by several pixels at K = 100 (else nothing is tested)
+  EXPECT_GT(held[2] - held[0], int(0.003 / kMetresPerPixel) + 6);
+  // the grip's outline around them, within the width of its dashed line
+  EXPECT_LE(grip[0], held[0] + 2);
+  EXPECT_GE(grip[2], held[2] - 2);
+  EXPECT_GE(grip[3], held[3] - 2);
 }
 
 TEST(DeformationRender, BadFactorIsRefusedNamingTheFlag) {

@@ -1,4 +1,4 @@
-#include "app/plot_history.h"
+#include "render/plot_history.h"
 
 #include <algorithm>
 

@@ -25,4 +25,10 @@ bool visible_range(const std::vector<double>& x, const std::vector<double>& y, d
 std::string plot_csv(const std::string& x_name, const std::string& y_name, const std::vector<double>& x,
                      const std::vector<double>& y, double x_lo, double x_hi);
 
+// The same for several series sharing one x: a header "x_name,y_names[0],y_names[1],..." and one
+// row per x in [x_lo, x_hi] with every series' value at it (ys[k] has as many values as x).
+std::string plot_csv(const std::string& x_name, const std::vector<double>& x,
+                     const std::vector<std::string>& y_names, const std::vector<const std::vector<double>*>& ys,
+                     double x_lo, double x_hi);
+
 }  // namespace periflex

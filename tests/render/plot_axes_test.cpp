@@ -1,6 +1,6 @@
 // The plots' axes: round ticks inside the range, labels without noise digits, the visible
 // range of a zoomed series, and the exported text.
-#include "app/plot_axes.h"
+#include "render/plot_axes.h"
 
 #include <gtest/gtest.h>
 
@@ -58,6 +58,15 @@ TEST(PlotAxes, VisibleRangeFollowsTheZoom) {
 TEST(PlotAxes, CsvHoldsTheShownPointsExactly) {
   const std::vector<double> x = {0.1, 0.2, 0.30000000000000004}, y = {1.0 / 3.0, -2.5, 1e-300};
   EXPECT_EQ(plot_csv("t", "kinetic", x, y, 0.15, 1.0), "t,kinetic\n0.2,-2.5\n0.30000000000000004,1e-300\n");
+}
+
+TEST(PlotAxes, CsvOfSeveralSeriesHasOneColumnEach) {
+  const std::vector<double> t = {0.0, 0.5, 1.0, 1.5}, work = {0.0, 2.0, 4.5, 7.0}, fracture = {0, 0, 0.25, 1e-9};
+  EXPECT_EQ(plot_csv("t", t, {"driver_work", "fracture"}, {&work, &fracture}, 0.4, 1.2),
+            "t,driver_work,fracture\n0.5,2,0\n1,4.5,0.25\n");
+  // a column shorter than x (a series added later) ends the rows
+  const std::vector<double> shorter = {5.0, 6.0};
+  EXPECT_EQ(plot_csv("t", t, {"a", "b"}, {&work, &shorter}, 0.0, 9.0), "t,a,b\n0,0,5\n0.5,2,6\n");
 }
 
 }  // namespace

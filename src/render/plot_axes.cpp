@@ -1,4 +1,4 @@
-#include "app/plot_axes.h"
+#include "render/plot_axes.h"
 
 #include <algorithm>
 #include <charconv>
@@ -66,14 +66,26 @@ bool visible_range(const std::vector<double>& x, const std::vector<double>& y, d
 
 std::string plot_csv(const std::string& x_name, const std::string& y_name, const std::vector<double>& x,
                      const std::vector<double>& y, double x_lo, double x_hi) {
-  std::string out = x_name + "," + y_name + "\n";
+  return plot_csv(x_name, x, {y_name}, {&y}, x_lo, x_hi);
+}
+
+std::string plot_csv(const std::string& x_name, const std::vector<double>& x,
+                     const std::vector<std::string>& y_names, const std::vector<const std::vector<double>*>& ys,
+                     double x_lo, double x_hi) {
+  std::string out = x_name;
+  for (const std::string& name : y_names) out += "," + name;
+  out += '\n';
   char buffer[32];
-  const size_t n = std::min(x.size(), y.size());
+  // rows as long as the shortest column
+  size_t n = x.size();
+  for (const std::vector<double>* y : ys) n = std::min(n, y->size());
   for (size_t i = 0; i < n; ++i) {
     if (x[i] < x_lo || x[i] > x_hi) continue;
     out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, x[i]).ptr);
-    out += ',';
-    out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, y[i]).ptr);
+    for (const std::vector<double>* y : ys) {
+      out += ',';
+      out.append(buffer, std::to_chars(buffer, buffer + sizeof buffer, (*y)[i]).ptr);
+    }
     out += '\n';
   }
   return out;

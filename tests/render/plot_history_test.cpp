@@ -1,6 +1,6 @@
 // The plots' history: one row per simulation step shown, every series.csv column the snapshot
 // carries, bounded in size, and thinned so a long run keeps its start and its latest values.
-#include "app/plot_history.h"
+#include "render/plot_history.h"
 
 #include <gtest/gtest.h>
 

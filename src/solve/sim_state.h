@@ -19,6 +19,7 @@
 
 #include "contact/contact_cache.h"
 #include "pd/flex_state.h"
+#include "solve/balance_drift.h"
 
 namespace periflex {
 
@@ -44,6 +45,9 @@ struct PassageWatch {
   long seen_changes = 0;
   uint64_t stable_dependent = 0;   // rows dependent outside passages
   double entry_time = 0.0, entry_balance = 0.0;
+  // the energy balance over the last steps outside passages (symplectic integrators with
+  // projection: the integrator's own energy error a passage is judged against)
+  BalanceDrift drift;
   std::vector<int> rows;           // every row left out during the passage
   // positions when it opened, to name the nearly dependent rows if the check fails (kept
   // allocated; a checkpoint holds them only while a passage is open)

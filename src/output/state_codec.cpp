@@ -175,6 +175,12 @@ std::vector<uint8_t> encode_state(const SimState& s) {
   w.put(s.passage.entry_balance);
   w.put_vector(s.passage.rows);
   w.put_vector(s.passage.open ? s.passage.entry_q : Eigen::VectorXd());
+  {
+    std::vector<double> times, balances;
+    s.passage.drift.samples(times, balances);
+    w.put_vector(times);
+    w.put_vector(balances);
+  }
   w.put_vector(s.rank.dropped);
   w.put_vector(s.rank.last_dependent);
   w.put<int64_t>(s.rank.rank_changes);
@@ -233,6 +239,15 @@ SimState decode_state(const uint8_t* bytes, size_t size) {
   s.passage.entry_balance = r.get<double>("the passage watch");
   r.get_vector(s.passage.rows, "the passage watch");
   r.get_vector(s.passage.entry_q, "the passage watch");
+  {
+    std::vector<double> times, balances;
+    r.get_vector(times, "the passage watch");
+    r.get_vector(balances, "the passage watch");
+    if (times.size() != balances.size() || times.size() > BalanceDrift::kSamples)
+      throw std::runtime_error("the passage watch's energy samples do not fit its record");
+    s.passage.drift.clear();
+    for (size_t k = 0; k < times.size(); ++k) s.passage.drift.record(times[k], balances[k]);
+  }
   r.get_vector(s.rank.dropped, "the constraint rows");
   r.get_vector(s.rank.last_dependent, "the constraint rows");
   s.rank.rank_changes = r.get<int64_t>("the constraint rows");

@@ -27,4 +27,14 @@ double BalanceDrift::change_over(double span) const {
   return std::abs(balance_[newest] - balance_[back]) * span / elapsed;
 }
 
+void BalanceDrift::samples(std::vector<double>& times, std::vector<double>& balances) const {
+  times.clear();
+  balances.clear();
+  for (int k = 0; k < count_; ++k) {
+    const int at = (next_ + kSamples - count_ + k) % kSamples;
+    times.push_back(time_[at]);
+    balances.push_back(balance_[at]);
+  }
+}
+
 }  // namespace periflex

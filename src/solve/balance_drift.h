@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 namespace periflex {
 
@@ -30,6 +31,9 @@ class BalanceDrift {
   // fewer than two samples.
   double change_over(double span) const;
   int size() const { return count_; }
+  // The samples, oldest first: recording them again in this order into a cleared record gives
+  // the same record (checkpoints keep them this way).
+  void samples(std::vector<double>& times, std::vector<double>& balances) const;
 
  private:
   std::array<double, kSamples> time_{}, balance_{};

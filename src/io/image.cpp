@@ -64,6 +64,20 @@ void write_png(const std::string& path, const RgbaImage& image) {
   }
 }
 
+namespace {
+
+// Copies the RGBA pixels stb_image decoded and frees its buffer.
+RgbaImage take_stb_pixels(unsigned char* data, int w, int h) {
+  RgbaImage image;
+  image.width = w;
+  image.height = h;
+  image.pixels.assign(data, data + static_cast<size_t>(w) * h * 4);
+  stbi_image_free(data);
+  return image;
+}
+
+}  // namespace
+
 RgbaImage read_png(const std::string& path) {
   int w = 0, h = 0, channels = 0;
   unsigned char* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
@@ -71,12 +85,7 @@ RgbaImage read_png(const std::string& path) {
     const char* reason = stbi_failure_reason();
     throw std::runtime_error("cannot read image " + path + ": " + (reason ? reason : "unknown error"));
   }
-  RgbaImage image;
-  image.width = w;
-  image.height = h;
-  image.pixels.assign(data, data + static_cast<size_t>(w) * h * 4);
-  stbi_image_free(data);
-  return image;
+  return take_stb_pixels(data, w, h);
 }
 
 RgbaImage decode_png(const uint8_t* bytes, size_t size) {
@@ -86,12 +95,7 @@ RgbaImage decode_png(const uint8_t* bytes, size_t size) {
     const char* reason = stbi_failure_reason();
     throw std::runtime_error(std::string("cannot decode PNG: ") + (reason ? reason : "unknown error"));
   }
-  RgbaImage image;
-  image.width = w;
-  image.height = h;
-  image.pixels.assign(data, data + static_cast<size_t>(w) * h * 4);
-  stbi_image_free(data);
-  return image;
+  return take_stb_pixels(data, w, h);
 }
 
 ImageDiff compare_images(const RgbaImage& expected, const RgbaImage& actual, int channel_tolerance,

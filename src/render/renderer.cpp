@@ -40,6 +40,17 @@ bool parse_field_name(const std::string& name, ColorField& field) {
 
 namespace {
 
+// The fixed state of every pass: 2D (no depth test, no culling, no scissor) with straight alpha
+// blending into a framebuffer whose alpha stays coverage.
+void use_flat_blending() {
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+}
+
 // colours of the picture, chosen to stay readable over the dark default background
 constexpr Rgba8 kGroundFill{78, 80, 88, 255}, kGroundEdge{140, 142, 150, 255};
 constexpr Rgba8 kBodyEdge{225, 230, 240, 255};
@@ -506,12 +517,7 @@ void Renderer::draw(const Snapshot& snapshot, const Camera& camera, const Render
   glViewport(0, 0, width, height);
   glClearColor(settings.background[0], settings.background[1], settings.background[2], 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_SCISSOR_TEST);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  use_flat_blending();
 
   float projection[16];
   camera.projection(height > 0 ? double(width) / height : 1.0, projection);
@@ -574,12 +580,7 @@ void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& sett
   const float w = static_cast<float>(std::max(width, 1)), h = static_cast<float>(std::max(height, 1));
   const float pixels[16] = {2.0f / w, 0, 0, 0, 0, -2.0f / h, 0, 0, 0, 0, -1.0f, 0, -1.0f, 1.0f, 0, 1.0f};
   glViewport(0, 0, width, height);
-  glDisable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  glDisable(GL_SCISSOR_TEST);
-  glEnable(GL_BLEND);
-  glBlendEquation(GL_FUNC_ADD);
-  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  use_flat_blending();
   m.draw_mesh(pixels);
   m.mesh.set_pixel_world(m.pixel_world);
   glBindVertexArray(0);

@@ -19,32 +19,13 @@ mkdir -p "$work"
 widgets="$work/widgets.txt"
 log="$work/stderr.txt"
 pid=""
-
-fail() {
-  echo "FAIL ($case_name): $*" >&2
-  [[ -f "$widgets" ]] && sed 's/^/  widgets: /' "$widgets" >&2
-  [[ -f "$log" ]] && tail -n 20 "$log" | sed 's/^/  log: /' >&2
-  if [[ -n "$pid" ]] && kill -0 "$pid" 2>/dev/null; then kill -9 "$pid" 2>/dev/null; fi
-  exit 1
-}
+source "$(dirname "$0")/gui_driver.sh"
 
 # value of a state line (`state KEY VALUE...`), all its words
 state() { awk -v k="$1" '$1 == "state" && $2 == k { $1 = ""; $2 = ""; sub(/^ +/, ""); print }' "$widgets" 2>/dev/null; }
 # the centre of a control, "X Y" in window coordinates
 centre() {
   awk -v k="$1" '$1 == "widget" && $2 == k { printf "%d %d\n", ($3 + $5) / 2, ($4 + $6) / 2 }' "$widgets" 2>/dev/null
-}
-
-# waits up to SECONDS for a shell condition to hold; fails with MESSAGE otherwise
-wait_until() {
-  local seconds=$1 message=$2
-  shift 2
-  local end=$((SECONDS + seconds))
-  until eval "$*"; do
-    kill -0 "$pid" 2>/dev/null || fail "the program ended early while waiting for: $message"
-    ((SECONDS < end)) || fail "timed out after ${seconds}s waiting for: $message (is the window frozen?)"
-    sleep 0.1
-  done
 }
 
 # moves the pointer onto a control and clicks it with the left button

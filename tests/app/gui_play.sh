@@ -9,32 +9,16 @@
 # Usage (inside an X display, e.g. under xvfb-run): gui_play.sh PERIFLEX SCENES_DIR OUT_DIR
 set -uo pipefail
 
-periflex=$1 scenes=$2 out=$3
+case_name=play periflex=$1 scenes=$2 out=$3
 work="$out/play"
 rm -rf "$work"
 mkdir -p "$work"
 widgets="$work/widgets.txt"
 log="$work/stderr.txt"
 pid=""
+source "$(dirname "$0")/gui_driver.sh"
 
-fail() {
-  echo "FAIL (play): $*" >&2
-  [[ -f "$widgets" ]] && sed 's/^/  widgets: /' "$widgets" >&2
-  [[ -f "$log" ]] && tail -n 20 "$log" | sed 's/^/  log: /' >&2
-  if [[ -n "$pid" ]] && kill -0 "$pid" 2>/dev/null; then kill -9 "$pid" 2>/dev/null; fi
-  exit 1
-}
 state() { awk -v k="$1" '$1 == "state" && $2 == k { print $3 }' "$widgets" 2>/dev/null; }
-wait_until() {
-  local seconds=$1 message=$2
-  shift 2
-  local end=$((SECONDS + seconds))
-  until eval "$*"; do
-    kill -0 "$pid" 2>/dev/null || fail "the program ended early while waiting for: $message"
-    ((SECONDS < end)) || fail "timed out after ${seconds}s waiting for: $message"
-    sleep 0.1
-  done
-}
 # a quick tap of 20 ms, shorter than a frame may take
 tap() {
   xdotool keydown "$1" && sleep 0.02 && xdotool keyup "$1" || fail "xdotool key $1"

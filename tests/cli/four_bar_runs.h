@@ -10,10 +10,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "run_output_files.h"
 #include "run_program.h"
 
 namespace periflex::testing {
@@ -41,34 +41,6 @@ inline std::map<long, double> reference_b0_x(double theta0, double omega0, doubl
   return out;
 }
 
-// series.csv as columns by name and rows of numbers; a missing column is -1 (the probes of the
-// pin are optional). Named apart from run_output_files.h's Series: one name, one definition.
-struct FourBarSeries {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& name) const {
-    for (size_t k = 0; k < names.size(); ++k)
-      if (names[k] == name) return static_cast<int>(k);
-    return -1;
-  }
-};
-
-inline FourBarSeries read_four_bar_series(const std::filesystem::path& file) {
-  FourBarSeries s;
-  std::istringstream text(read_text(file));
-  std::string line;
-  std::getline(text, line);
-  std::stringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');) s.names.push_back(cell);
-  while (std::getline(text, line)) {
-    std::stringstream row(line);
-    std::vector<double> values;
-    for (std::string cell; std::getline(row, cell, ',');) values.push_back(std::stod(cell));
-    s.rows.push_back(values);
-  }
-  return s;
-}
-
 // A number as the command line takes it back exactly.
 inline std::string exact_text(double v) {
   char buffer[32];
@@ -92,9 +64,9 @@ inline FourBarOutcome run_and_compare(const std::string& tag, const std::string&
   const auto r = run_periflex("run " + scene_file + " --quiet " + arguments + " --out " + out.string());
   o.exit_code = r.exit_code;
   o.output = r.output;
-  const FourBarSeries s = read_four_bar_series(out / "series.csv");
-  const int t = s.column("t"), x = s.column("probe.b0.x");
-  const int px = s.column("probe.pin0_end.x"), py = s.column("probe.pin0_end.y");
+  const Series s = read_series(out / "series.csv");
+  const int t = s.find_column("t"), x = s.find_column("probe.b0.x");
+  const int px = s.find_column("probe.pin0_end.x"), py = s.find_column("probe.pin0_end.y");
   if (t < 0 || x < 0) return o;
   for (const auto& row : s.rows) {
     o.end_time = row[t];

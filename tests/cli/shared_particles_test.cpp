@@ -6,40 +6,14 @@
 
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "run_output_files.h"
 #include "run_program.h"
 
 namespace periflex::testing {
 namespace {
-
-struct Table {
-  std::vector<std::string> names;
-  std::vector<std::vector<double>> rows;
-  int column(const std::string& name) const {
-    for (size_t k = 0; k < names.size(); ++k)
-      if (names[k] == name) return static_cast<int>(k);
-    return -1;
-  }
-};
-
-Table read_table(const std::filesystem::path& file) {
-  Table t;
-  std::istringstream text(read_text(file));
-  std::string line;
-  std::getline(text, line);
-  std::stringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');) t.names.push_back(cell);
-  while (std::getline(text, line)) {
-    std::stringstream row(line);
-    std::vector<double> values;
-    for (std::string cell; std::getline(row, cell, ',');) values.push_back(std::stod(cell));
-    t.rows.push_back(values);
-  }
-  return t;
-}
 
 TEST(SharedParticles, PlateHeldWholeByBothGripsTurnsAsOneRigidBody) {
   const auto out = fresh_directory("plate_held_whole");
@@ -51,7 +25,7 @@ TEST(SharedParticles, PlateHeldWholeByBothGripsTurnsAsOneRigidBody) {
   ASSERT_EQ(r.exit_code, 0) << r.output;
   // set-up and run in seconds (a few on a loaded two-core machine; the analysis was n^2.5)
   EXPECT_LT(seconds, 30.0);
-  const Table t = read_table(out / "series.csv");
+  const Series t = read_series(out / "series.csv");
   ASSERT_GE(t.rows.size(), 30u);
   EXPECT_NEAR(t.rows.back()[t.column("t")], 3e-4, 1e-12);
 

@@ -41,14 +41,14 @@ struct BranchSigns {
   double coupler_angle = 1e300, energy_error = 1e300;
 };
 BranchSigns branch_signs(const std::string& tag) {
-  const FourBarSeries s = read_four_bar_series(std::filesystem::current_path() / ("cli_test_out_singular_" + tag) / "series.csv");
+  const Series s = read_series(std::filesystem::current_path() / ("cli_test_out_singular_" + tag) / "series.csv");
   BranchSigns out;
-  const int e = s.column("energy_balance");
+  const int e = s.find_column("energy_balance");
   if (e < 0) return out;
   out.coupler_angle = out.energy_error = 0.0;
   for (const auto& row : s.rows) out.energy_error = std::max(out.energy_error, std::abs(row[e]));
   for (const char* body : {"coupler1", "coupler2"}) {
-    const int c = s.column(std::string("probe.") + body + ".angle");
+    const int c = s.find_column(std::string("probe.") + body + ".angle");
     if (c < 0) return BranchSigns{};
     for (const auto& row : s.rows)
       out.coupler_angle = std::max(out.coupler_angle, std::abs(std::remainder(row[c], 2.0 * kPi)));

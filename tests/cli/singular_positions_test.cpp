@@ -90,7 +90,7 @@ TEST(SingularPositions, FlexibleCouplerSingularStartKeepsEveryJointClosed) {
   const auto r = run_periflex("run " + std::string(PERIFLEX_TEST_DATA) +
                               "/scenes/a02_singular_start_flexible.toml --quiet --out " + out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const FourBarSeries s = read_four_bar_series(out / "series.csv");
+  const Series s = read_series(out / "series.csv");
   ASSERT_GT(s.rows.size(), 500u);
   EXPECT_NEAR(s.rows.back()[s.column("t")], 3.0, 1e-9);
   // a probe's distance from a fixed point, or from another probe, over the run

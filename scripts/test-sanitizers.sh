@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The sanitizer configurations CI runs after the main suite:
-#   AddressSanitizer + UBSan over the solver, peridynamics, the scene parser (malformed scenes)
-#   and the command line;
+#   AddressSanitizer + UBSan over the solver, peridynamics, coupling, contact, the scene parser
+#   (malformed scenes) and the command line;
 #   ThreadSanitizer over the threaded parts of the visualiser: the unit tests (snapshot exchange,
 #   command queue, simulation thread) and the GUI smoke tests, scripted runs of the program under
 #   Xvfb that drive the simulation thread while the window draws (tests/gui_smoke.cmake, label
@@ -11,10 +11,12 @@ cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs="$(nproc)"
 
+# only what those labels run is built: the program and their test programs
+asan_labels=(core scene mbs pd coupling contact solve cli output)
 cmake --preset asan -DPERIFLEX_GUI=OFF -DPERIFLEX_HEADLESS=OFF >/dev/null
-cmake --build --preset asan -j"$jobs"
+cmake --build --preset asan -j"$jobs" --target periflex "${asan_labels[@]/#/test_}"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-  ctest --preset asan -j"$jobs" -L '^(core|scene|mbs|pd|solve|cli|output)$' --timeout 900
+  ctest --preset asan -j"$jobs" -L "^($(IFS='|'; echo "${asan_labels[*]}"))\$" --timeout 900
 
 # one build for both: the program (with the GUI) and the unit tests, nothing else
 cmake --preset tsan >/dev/null

@@ -50,14 +50,20 @@ RigidContact::Side RigidContact::make_side(int body, const BodyDef& def) {
       case ShapeDef::Kind::kNone:
         break;
     }
-    // box and convex polygon: the separating axis test applies (a bar is rounded: not here)
-    bool convex = shape.kind == ShapeDef::Kind::kBox;
-    if (shape.kind == ShapeDef::Kind::kPolygon) {
-      std::vector<Vec2> corners_of;
-      for (const Feature& f : features) corners_of.push_back(f.point);
-      convex = is_convex(corners_of);
+    // the convex outline the separating axis test uses: a box's or convex polygon's corners; a
+    // bar's straight part (its core segment widened by its radius on both sides: where a bar
+    // crossing a shape with both ends outside it overlaps it); none for a circle or a concave
+    // polygon
+    std::vector<Vec2> hull;
+    if (shape.kind == ShapeDef::Kind::kBox || shape.kind == ShapeDef::Kind::kPolygon) {
+      for (const Feature& f : features) hull.push_back(f.point);
+      if (!is_convex(hull)) hull.clear();
+    } else if (shape.kind == ShapeDef::Kind::kBar && shape.p2 != shape.p1) {
+      const Vec2 along = (shape.p2 - shape.p1).normalized();
+      const Vec2 side_way = shape.radius * Vec2(-along.y(), along.x());
+      hull = {shape.p1 - side_way, shape.p2 - side_way, shape.p2 + side_way, shape.p1 + side_way};
     }
-    side.convex.push_back(convex);
+    side.hull.push_back(std::move(hull));
     side.features.push_back(std::move(features));
     Vec2 centre;
     double radius;
@@ -139,12 +145,12 @@ void RigidContact::apply(int a, int b, const Vec2& c, const Vec2& n, double dept
 
 bool RigidContact::cross_overlap(size_t s, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
                                  Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const {
-  // both shapes' corners where the bodies are now
+  // both shapes' convex outlines where the bodies are now
   const auto world = [&](const Side& side, size_t shape) {
     const Vec2 r(q[3 * side.body], q[3 * side.body + 1]);
     const Mat2 rot = rotation(q[3 * side.body + 2]);
     std::vector<Vec2> out;
-    for (const Feature& f : side.features[shape]) out.push_back(r + rot * f.point);
+    for (const Vec2& p : side.hull[shape]) out.push_back(r + rot * p);
     return out;
   };
   PolygonOverlap overlap;
@@ -173,9 +179,11 @@ RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::Ve
         const long before = sums.active;
         touch(i_, s, j_, t, q, qd, g, points, sums);
         touch(j_, t, i_, s, q, qd, g, points, sums);
-        // no corner inside the other: two convex polygons may still cross (a plus sign); then
-        // one contact pushes them apart along the axis of least penetration
-        if (sums.active == before && i_.convex[s] && j_.convex[t]) cross_overlap(s, t, q, qd, g, points, sums);
+        // no corner or bar end inside the other: two convex outlines may still cross (a plus
+        // sign, a bar across a box or another bar); then one contact pushes them apart along
+        // the axis of least penetration
+        if (sums.active == before && !i_.hull[s].empty() && !j_.hull[t].empty())
+          cross_overlap(s, t, q, qd, g, points, sums);
       }
     }
   }

@@ -10,7 +10,8 @@
 //  - A box strikes the corner of a free box off-centre (polygon against polygon): both turn,
 //    momentum and angular momentum are kept, the energy balance closes.
 //  - Two boxes crossed like a plus sign, no corner of either inside the other, are pushed apart
-//    the shallower way, each leaving with half the stored energy.
+//    the shallower way, each leaving with half the stored energy; a bar across a box, and two
+//    bars crossed like a plus sign, with both ends of each outside the other, part the same way.
 //  - A step too large for the stiffness is refused before the run, naming the key; a rigid
 //    contact without stiffness, or of a body with itself, is refused naming the key.
 #include <gtest/gtest.h>
@@ -187,6 +188,65 @@ TEST(RigidContact, BoxesCrossedLikeAPlusSignArePushedApartAlongTheShallowerWay) 
     EXPECT_NEAR(row[s.column("probe.tall.vy")] + row[s.column("probe.long.vy")], 0.0, 1e-12);
     EXPECT_NEAR(row[s.column("probe.tall.vx")] + row[s.column("probe.long.vx")], 0.0, 1e-12);
     EXPECT_NEAR(row[s.column("probe.tall.omega")], 0.0, 1e-9);
+  }
+}
+
+TEST(RigidContact, BarAcrossABoxWithBothEndsOutsideIsPushedApartLikeTheBox) {
+  // the plus sign again with the long box made a bar of the same size (200 mm between its end
+  // centres' outer edges less the rounding: ends at +-0.1 m, 20 mm wide): both bar ends lie far
+  // outside the tall box and no corner of the box lies inside the bar. The bar's straight part
+  // overlaps the box by 35 mm upwards, as the long box did, so they separate the same way
+  const std::string text =
+      header(3e-5, 0.05) +
+      body("long", 1.0, 1.0 / 12.0 * (0.04 + 0.0004), 0.0, 0.0, 0.0, 0.0,
+           "{ type = \"bar\", p1 = [-0.1, 0.0], p2 = [0.1, 0.0], width = 0.02 }") +
+      body("tall", 1.0, 1.0 / 12.0 * (0.0004 + 0.0036), 0.0, 0.005, 0.0, 0.0,
+           "{ type = \"box\", width = 0.02, height = 0.06 }") +
+      contact("long", "tall", 1e4, 1.0);
+  const Series s = run_scene("bar_across_box", text);
+  ASSERT_GT(s.rows.size(), 10u);
+  const auto& first = s.rows.front();
+  const auto& last = s.rows.back();
+  EXPECT_EQ(first[s.column("contact_count")], 1.0);
+  EXPECT_EQ(last[s.column("contact_count")], 0.0);
+  const double gap = (last[s.column("probe.tall.y")] - 0.03) - (last[s.column("probe.long.y")] + 0.01);
+  std::printf("bar across a box: gap at the end %.4f m, speeds %.4f and %.4f m/s\n", gap,
+              last[s.column("probe.tall.vy")], last[s.column("probe.long.vy")]);
+  EXPECT_GT(gap, 0.0);
+  EXPECT_GT(last[s.column("probe.tall.vy")], 0.0);
+  EXPECT_LT(last[s.column("probe.long.vy")], 0.0);
+  for (const auto& row : s.rows) {
+    EXPECT_NEAR(row[s.column("probe.tall.vy")] + row[s.column("probe.long.vy")], 0.0, 1e-12);
+    EXPECT_NEAR(row[s.column("probe.tall.vx")] + row[s.column("probe.long.vx")], 0.0, 1e-12);
+  }
+}
+
+TEST(RigidContact, BarsCrossedLikeAPlusSignArePushedApartWithoutTurning) {
+  // a bar along x across a bar along y whose middle is 5 mm higher: each bar's end centres lie
+  // 35 mm or more from the other's core, more than the two radii (20 mm), so only their straight
+  // parts find the overlap: 55 mm upwards, 65 mm downwards, 120 mm sideways. They part along y,
+  // the upright bar up, without turning (the contact acts on the line through both middles)
+  const std::string text =
+      header(3e-5, 0.05) +
+      body("flat", 1.0, 1.0 / 12.0 * 0.04, 0.0, 0.0, 0.0, 0.0,
+           "{ type = \"bar\", p1 = [-0.1, 0.0], p2 = [0.1, 0.0], width = 0.02 }") +
+      body("upright", 1.0, 1.0 / 12.0 * 0.01, 0.0, 0.005, 0.0, 0.0,
+           "{ type = \"bar\", p1 = [0.0, -0.04], p2 = [0.0, 0.04], width = 0.02 }") +
+      contact("flat", "upright", 1e4, 1.0);
+  const Series s = run_scene("bars_crossed", text);
+  ASSERT_GT(s.rows.size(), 10u);
+  EXPECT_EQ(s.rows.front()[s.column("contact_count")], 1.0);
+  const auto& last = s.rows.back();
+  EXPECT_EQ(last[s.column("contact_count")], 0.0);
+  // apart: the upright bar's lower end (core end less its radius) above the flat bar's top
+  const double gap = (last[s.column("probe.upright.y")] - 0.05) - (last[s.column("probe.flat.y")] + 0.01);
+  std::printf("bars crossed: gap at the end %.4f m, upright bar at %.4f m/s\n", gap, last[s.column("probe.upright.vy")]);
+  EXPECT_GT(gap, 0.0);
+  EXPECT_GT(last[s.column("probe.upright.vy")], 0.0);
+  for (const auto& row : s.rows) {
+    EXPECT_NEAR(row[s.column("probe.flat.vy")] + row[s.column("probe.upright.vy")], 0.0, 1e-12);
+    EXPECT_NEAR(row[s.column("probe.flat.vx")] + row[s.column("probe.upright.vx")], 0.0, 1e-12);
+    EXPECT_NEAR(row[s.column("probe.upright.omega")], 0.0, 1e-9);
   }
 }
 

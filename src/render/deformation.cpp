@@ -84,6 +84,15 @@ Vec2 RigidShift::apply(const Vec2& p) const {
   return to + Vec2(c * a.x() - s * a.y(), s * a.x() + c * a.y());
 }
 
+Vec2 magnified_probe(const Snapshot::Probe& probe, const std::vector<float>& x, const std::vector<float>& y,
+                     const std::vector<RigidShift>& shifts) {
+  const size_t particle = static_cast<size_t>(probe.particle);
+  if (probe.particle >= 0 && particle < x.size() && particle < y.size()) return Vec2(x[particle], y[particle]);
+  const size_t body = static_cast<size_t>(probe.body);
+  if (probe.body > 0 && body < shifts.size()) return shifts[body].apply(probe.position);
+  return probe.position;
+}
+
 std::vector<RigidShift> magnified_body_shifts(const Snapshot& s, const std::vector<float>& x,
                                               const std::vector<float>& y) {
   if (!s.geometry) return {};

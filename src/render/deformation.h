@@ -41,6 +41,11 @@ struct RigidShift {
 std::vector<RigidShift> magnified_body_shifts(const Snapshot& snapshot, const std::vector<float>& x,
                                               const std::vector<float>& y);
 
+// Where a probe is drawn when the deformation is magnified: a particle probe on its particle's
+// magnified place (x, y), a probe on a virtual body moved with it (`shifts`), any other where it is.
+Vec2 magnified_probe(const Snapshot::Probe& probe, const std::vector<float>& x, const std::vector<float>& y,
+                     const std::vector<RigidShift>& shifts);
+
 // The largest deformation (distance from the best-fit rigid position) of any particle, each
 // divided by its body's size (the diagonal of its reference bounds); 0 without particles.
 double largest_relative_deformation(const Snapshot& snapshot);

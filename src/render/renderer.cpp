@@ -452,8 +452,11 @@ void Renderer::Impl::build_overlay_geometry(const Snapshot& s, const RenderSetti
       }
     }
   }
+  // probes on what carries them: a particle's magnified place, a virtual body's shifted one
   if (settings.show_probes)
-    for (const auto& p : s.probes) mesh.cross_px(p.position, 4.0, 1.5, kProbe);
+    for (const auto& p : s.probes)
+      mesh.cross_px(deform_used == 1.0 ? p.position : magnified_probe(p, shown_x, shown_y, body_shift), 4.0, 1.5,
+                    kProbe);
   // active contacts: a dot where each acts and a stroke along its force, 6 to 24 px long by its
   // share of the largest force
   if (settings.show_contacts && !s.contacts.empty()) {

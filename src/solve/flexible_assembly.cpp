@@ -35,7 +35,10 @@ void build_flexible_part(const SceneDef& scene, SystemModel& m) {
     const PdBody& flex = *m.flex_bodies[f];
     ProbePoint p;
     p.name = def.name;
-    p.particle_coordinate = flex.coordinate_offset() + 2 * flex.nearest_particle(def.point);
+    const int nearest = flex.nearest_particle(def.point);
+    p.particle_coordinate = flex.coordinate_offset() + 2 * nearest;
+    p.particle = nearest;
+    for (int before = 0; before < f; ++before) p.particle += m.flex_bodies[before]->particle_count();
     m.probes.push_back(p);
   }
 

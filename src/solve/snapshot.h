@@ -89,7 +89,14 @@ struct Snapshot {
   std::vector<Marker> markers;
   struct Spring { Vec2 a = Vec2::Zero(), b = Vec2::Zero(); };
   std::vector<Spring> springs;
-  struct Probe { std::string name; Vec2 position = Vec2::Zero(); };
+  // particle: a particle probe's index in px, py (-1: a rigid probe); body: a rigid probe's
+  // body as the markers count it (0: ground), so the drawing can move it with what carries it
+  struct Probe {
+    std::string name;
+    Vec2 position = Vec2::Zero();
+    int particle = -1;
+    int body = 0;
+  };
   std::vector<Probe> probes;
 
   // Active contacts: where each acts and the force on its first side [N] (the particle, the

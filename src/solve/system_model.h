@@ -33,6 +33,7 @@ struct ProbePoint {
   std::string name;
   BodyPoint point;               // rigid probe (body >= 0)
   int particle_coordinate = -1;  // particle probe: index of x in q
+  int particle = -1;             // particle probe: index among all flexible bodies' particles
   bool is_particle() const { return particle_coordinate >= 0; }
 };
 

@@ -1,5 +1,6 @@
 // Deformation magnification: the rigid motion of a body is never magnified, its deformation is,
-// by exactly the factor; the automatic factor follows the deformation's size. No GL needed.
+// by exactly the factor; the automatic factor follows the deformation's size; virtual bodies and
+// probes go with what carries them. No GL needed.
 #include "render/deformation.h"
 
 #include <gtest/gtest.h>
@@ -144,6 +145,37 @@ TEST(Deformation, VirtualBodyMovesWithTheParticlesItHoldsOrdinaryBodiesStay) {
   EXPECT_GT(largest_move, 1e-3);
   const Vec2 p(0.19, -0.02);
   EXPECT_EQ(shifts[2].apply(p), p);
+}
+
+TEST(Deformation, ProbesAreDrawnOnWhatCarriesThem) {
+  // the bent beam again, magnified ten times: a probe on a particle of its free end, a probe on
+  // the virtual body holding its left column, one on the ordinary body and one on the ground
+  Snapshot s = grid_body(20, 4, 0.01);
+  auto geometry = std::make_shared<SceneGeometry>(*s.geometry);
+  geometry->bodies.resize(3);
+  geometry->bodies[0].ground = true;
+  geometry->bodies[1].is_virtual = true;
+  geometry->particle_body.assign(s.px.size(), 0);
+  for (int j = 0; j < 4; ++j) geometry->particle_body[j * 20] = 1;
+  s.geometry = geometry;
+  for (size_t i = 0; i < s.px.size(); ++i) s.py[i] -= float(0.05 * s.px[i] * s.px[i]);
+  std::vector<float> x, y;
+  magnify_deformation(s, 10.0, x, y);
+  const std::vector<RigidShift> shifts = magnified_body_shifts(s, x, y);
+  const size_t tip = 3 * 20 + 19;  // upper right particle
+  const Snapshot::Probe on_particle{"tip", Vec2(s.px[tip], s.py[tip]), static_cast<int>(tip), 0};
+  const Snapshot::Probe on_virtual{"grip", Vec2(0.0, 0.01), -1, 1};
+  const Snapshot::Probe on_rigid{"support", Vec2(0.19, -0.02), -1, 2};
+  const Snapshot::Probe on_ground{"origin", Vec2(0.05, 0.0), -1, 0};
+  // the particle's probe is where its particle is drawn, 3 mm from its true place
+  const Vec2 tip_drawn = magnified_probe(on_particle, x, y, shifts);
+  EXPECT_EQ(tip_drawn, Vec2(x[tip], y[tip]));
+  EXPECT_GT((tip_drawn - on_particle.position).norm(), 1e-3);
+  // the grip's probe moves as the grip does, the others stay
+  EXPECT_EQ(magnified_probe(on_virtual, x, y, shifts), shifts[1].apply(on_virtual.position));
+  EXPECT_GT((magnified_probe(on_virtual, x, y, shifts) - on_virtual.position).norm(), 1e-3);
+  EXPECT_EQ(magnified_probe(on_rigid, x, y, shifts), on_rigid.position);
+  EXPECT_EQ(magnified_probe(on_ground, x, y, shifts), on_ground.position);
 }
 
 }  // namespace

@@ -4,8 +4,9 @@
 //
 //   shared_machine_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
-// The program starts itself again with passive OpenMP waiting, as periflex does
-// (core/thread_waiting.h); set OMP_WAIT_POLICY=active to see libgomp's default spinning.
+// The program starts itself again with a brief spin before waiting threads sleep, as periflex
+// does (core/thread_waiting.h); set OMP_WAIT_POLICY=passive to compare with sleeping at once,
+// OMP_WAIT_POLICY=active to see libgomp's default spinning.
 // Goals: with the busy process, two threads within 1.3x of one thread's wall time; quiet, two
 // threads at least 1.6x faster than one.
 #include <benchmark/benchmark.h>
@@ -92,7 +93,7 @@ BENCHMARK(GlassBranchingSteps)
 }  // namespace periflex
 
 int main(int argc, char** argv) {
-  periflex::restart_with_passive_waiting(argv);
+  periflex::restart_with_brief_spinning(argv);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

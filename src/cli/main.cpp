@@ -170,7 +170,7 @@ int run_main(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  periflex::restart_with_passive_waiting(argv);
+  periflex::restart_with_brief_spinning(argv);
   try {
     return run_main(argc, argv);
   } catch (const periflex::InputError& error) {

@@ -6,10 +6,10 @@
 
 namespace periflex {
 
-void restart_with_passive_waiting(char** argv) {
+void restart_with_brief_spinning(char** argv) {
   // a user's own choice stands, and after the restart the variable is set: no second restart
   if (std::getenv("OMP_WAIT_POLICY") != nullptr || std::getenv("GOMP_SPINCOUNT") != nullptr) return;
-  setenv("OMP_WAIT_POLICY", "passive", 0);
+  setenv("GOMP_SPINCOUNT", kSpinTurns, 0);
   // the same executable, whatever PATH or the current folder say
   ::execv("/proc/self/exe", argv);
 }

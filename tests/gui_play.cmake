@@ -10,4 +10,11 @@ if(TARGET periflex_app AND PERIFLEX_PLAY_XVFB_RUN AND PERIFLEX_PLAY_XDOTOOL)
                    "${PROJECT_SOURCE_DIR}/scenes" "${CMAKE_CURRENT_BINARY_DIR}/gui_play")
   set_tests_properties(gui_play_keys PROPERTIES LABELS gui TIMEOUT 180 RESOURCE_LOCK xvfb
                        FAIL_REGULAR_EXPRESSION "ThreadSanitizer")
+  # under ThreadSanitizer as the other window tests (tests/gui_smoke.cmake): Mesa's threads
+  # suppressed, OpenMP at one thread (libgomp is not instrumented, so TSan cannot see its
+  # barriers: building the replay's model reported every parallel loop of the bond search)
+  if(PERIFLEX_SANITIZE STREQUAL "thread")
+    set_tests_properties(gui_play_keys PROPERTIES ENVIRONMENT
+      "TSAN_OPTIONS=halt_on_error=1 second_deadlock_stack=1 suppressions=${PROJECT_SOURCE_DIR}/scripts/tsan.supp;OMP_NUM_THREADS=1")
+  endif()
 endif()

@@ -141,6 +141,14 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
              COMMAND gui_png_check "${gui_out}/no_crack.png" --no-crack "${notched}")
     set_tests_properties(gui_smoke_no_crack_picture PROPERTIES LABELS gui
                          FIXTURES_REQUIRED gui_picture_no_crack)
+
+    # the script's plot with several series (how the page's plot picture is taken): both series
+    # in the plot the window dumps (an older dump is removed first, so it cannot pass)
+    set(plot_dump "${gui_out}/plot_series_widgets.txt")
+    add_test(NAME gui_script_plot_series
+             COMMAND ${gui_xvfb} bash -c "rm -f \"$1\" && PERIFLEX_GUI_WIDGETS=\"$1\" \"$2\" gui \"$3\" --frames 8 --script 'plot driver_work+fracture@1' && grep -qx 'state plot_series driver_work fracture' \"$1\""
+                     plot_series "${plot_dump}" $<TARGET_FILE:periflex> "${notched}")
+    set_tests_properties(gui_script_plot_series PROPERTIES LABELS gui TIMEOUT 120 RESOURCE_LOCK xvfb)
   endif()
 
   # real input: recording from the Export panel (PNG folder, MP4), the keys, a live setting

@@ -287,10 +287,14 @@ void GuiApp::execute(const ScriptAction& a) {
     grabbing_ = false;
     send(command(Kind::kMouseSpring));
   } else if (verb == "plot") {
-    // the plot window with column Y against X (time by default); a column the scene lacks
-    // falls back as in the window
+    // the plot window with column Y (Y1+Y2+...: several series, as "+ series" adds them)
+    // against X (time by default); a column the scene lacks falls back as in the window
     show_plot_ = true;
-    plot_y_ = a.args[0];
+    plot_more_.clear();
+    std::string columns = a.args[0];
+    for (size_t plus; (plus = columns.rfind('+')) != std::string::npos; columns.resize(plus))
+      plot_more_.insert(plot_more_.begin(), columns.substr(plus + 1));
+    plot_y_ = columns;
     plot_x_ = a.args.size() > 1 ? a.args[1] : "t";
     plot_zoomed_ = false;
   } else if (verb == "cut") {

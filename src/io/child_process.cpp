@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <spawn.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -44,7 +45,7 @@ std::string current_executable() {
 
 std::string find_program(const std::string& name) {
   const char* path = std::getenv("PATH");
-  std::string dirs = path ? path : "";
+  std::string dirs = path ? path : "/usr/local/bin:/usr/bin:/bin";
   size_t begin = 0;
   for (;;) {
     const size_t end = dirs.find(':', begin);
@@ -56,6 +57,36 @@ std::string find_program(const std::string& name) {
     if (end == std::string::npos) return "";
     begin = end + 1;
   }
+}
+
+pid_t start_child(const std::vector<std::string>& argv, const ChildStreams& streams, std::string& error) {
+  if (argv.empty()) {
+    error = "no program given";
+    return -1;
+  }
+  std::vector<char*> args;
+  for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  if (streams.input >= 0) posix_spawn_file_actions_adddup2(&actions, streams.input, STDIN_FILENO);
+  if (streams.output >= 0) {
+    posix_spawn_file_actions_adddup2(&actions, streams.output, STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, streams.output, STDERR_FILENO);
+  }
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, args[0], &actions, &attributes, args.data(), environ);
+  posix_spawnattr_destroy(&attributes);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) {
+    error = "cannot start " + argv[0] + ": " + std::strerror(rc);
+    return -1;
+  }
+  return pid;
 }
 
 ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& limits) {

@@ -1,7 +1,14 @@
-// Runs a program as a child process with a wall-clock limit and a memory limit, capturing its
-// combined output. The stability suite runs every case this way, so a case that crashes, hangs
-// or tries to allocate without bound is observed and reported instead of taking the suite down.
+// Child processes, the one place the program starts them:
+//  - run_child runs a program with a wall-clock limit and a memory limit, capturing its combined
+//    output. The stability suite runs every case this way, so a case that crashes, hangs or tries
+//    to allocate without bound is observed and reported instead of taking the suite down;
+//  - start_child starts one that runs beside the program (ffmpeg reading the movie's frames),
+//    with its input and output on descriptors the caller gives.
+// Both put the child in a process group of its own: a timeout kills the whole group, and a
+// terminal's Ctrl-C reaches periflex only, which then ends its children its own way.
 #pragma once
+
+#include <sys/types.h>
 
 #include <string>
 #include <vector>
@@ -27,10 +34,22 @@ struct ChildResult {
 // Runs argv[0] (a path) with the arguments argv[1..]; blocks until it ends or the limit passes.
 ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& limits);
 
+// Where a started child reads and writes: descriptors dup'ed onto its standard input and onto
+// its standard output and error (-1: the parent's own).
+struct ChildStreams {
+  int input = -1;
+  int output = -1;
+};
+
+// Starts argv[0] (a path) with the arguments argv[1..] and returns at once: its pid, or -1 with
+// the reason in `error`. The caller waits for it (waitpid).
+pid_t start_child(const std::vector<std::string>& argv, const ChildStreams& streams, std::string& error);
+
 // The path of the running program (/proc/self/exe), for commands that re-run themselves.
 std::string current_executable();
 
-// The path of an executable `name` on PATH (as a shell would find it), or empty.
+// The path of an executable `name` on PATH (as a shell would find it; /usr/local/bin:/usr/bin:/bin
+// when PATH is unset), or empty.
 std::string find_program(const std::string& name);
 
 }  // namespace periflex

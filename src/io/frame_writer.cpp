@@ -1,7 +1,6 @@
 #include "io/frame_writer.h"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -12,13 +11,11 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 #include <vector>
 
 #include "core/error.h"
-
-extern char** environ;
+#include "io/child_process.h"
 
 namespace periflex {
 
@@ -52,23 +49,7 @@ void PngSequenceWriter::write(const RgbaImage& frame) {
 // ---------------------------------------------------------------------------
 // ffmpeg discovery
 
-std::string find_ffmpeg(const std::string& path_list) {
-  std::string paths = path_list;
-  if (paths.empty()) {
-    const char* env = std::getenv("PATH");
-    paths = env ? env : "/usr/local/bin:/usr/bin:/bin";
-  }
-  // the first executable regular file named ffmpeg along the list
-  std::stringstream ss(paths);
-  std::string dir;
-  while (std::getline(ss, dir, ':')) {
-    if (dir.empty()) continue;
-    const fs::path candidate = fs::path(dir) / "ffmpeg";
-    std::error_code ec;
-    if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate.string();
-  }
-  return "";
-}
+std::string find_ffmpeg() { return find_program("ffmpeg"); }
 
 void check_movie_output(const std::string& movie_path, const std::string& option) {
   SourceLocation where;
@@ -123,31 +104,16 @@ Mp4Writer::Mp4Writer(std::string path, int width, int height, double fps, const 
       "-an", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
       "-c:v", "libx264", "-preset", "veryfast", "-g", gop, "-pix_fmt", "yuv420p",
       "-movflags", "frag_keyframe+empty_moov+default_base_moof", path_};
-  // input "-" also tells ffmpeg not to read keyboard commands from it
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, sv[1], STDIN_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, log_fd, STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
-  // a process group of its own: Ctrl-C at the terminal stops periflex, which then closes the
-  // movie cleanly, instead of reaching ffmpeg too and cutting the movie short
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-  posix_spawnattr_setpgroup(&attributes, 0);
-  const int rc = ::posix_spawn(&pid_, exe.c_str(), &actions, &attributes, argv.data(), environ);
-  posix_spawnattr_destroy(&attributes);
-  posix_spawn_file_actions_destroy(&actions);
+  // input "-" also tells ffmpeg not to read keyboard commands from it; a process group of its
+  // own (start_child): Ctrl-C at the terminal stops periflex, which then closes the movie
+  // cleanly, instead of reaching ffmpeg too and cutting the movie short
+  std::string error;
+  pid_ = start_child(args, {sv[1], log_fd}, error);
   ::close(sv[1]);
   ::close(log_fd);
-  if (rc != 0) {
+  if (pid_ < 0) {
     ::close(sv[0]);
-    pid_ = -1;
-    throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
+    throw std::runtime_error(error);
   }
   fd_ = sv[0];
 }

@@ -40,9 +40,8 @@ class PngSequenceWriter : public FrameWriter {
   long count_ = 0;
 };
 
-// Absolute path of the ffmpeg executable found on `path_list` (a PATH-style, colon-separated list;
-// empty means the PATH environment variable), or an empty string when there is none.
-std::string find_ffmpeg(const std::string& path_list = "");
+// Absolute path of the ffmpeg executable on PATH, or an empty string when there is none.
+std::string find_ffmpeg();
 
 // Checks before any simulation starts that a movie can be written to `movie_path`: ffmpeg exists
 // and the folder is writable. Throws periflex::InputError (exit code 2) keyed by `option`

@@ -979,7 +979,7 @@ void Simulation::fill_snapshot(Snapshot& out) const {
   out.probes.clear();
   for (const auto& p : m.probes) {
     const Vec2 at = p.is_particle() ? Vec2(q[p.particle_coordinate], q[p.particle_coordinate + 1]) : p.point.position(q);
-    out.probes.push_back({p.name, at, p.is_particle() ? p.particle : -1, p.is_particle() ? 0 : p.point.body + 1});
+    out.probes.push_back({p.name, at, p.particle, p.is_particle() ? 0 : p.point.body + 1});
   }
   // active contacts (a pass of each contact of its own; nothing without [[contact]])
   s.contact_points.clear();

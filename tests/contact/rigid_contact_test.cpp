@@ -150,104 +150,75 @@ TEST(RigidContact, HeadOnDiscsExchangeTheMomentumOfAnElasticImpact) {
   }
 }
 
+// Two free 1 kg bodies crossed like a plus sign, k = 1e4 N/m, e = 1, for 0.05 s: "lower" lying
+// along x at the origin, "upper" standing along y with its middle 5 mm higher. Checks what every
+// such crossing must do: one contact at the start and none at the end; apart (upper's lowest
+// point, `upper_reach` below its middle, above lower's top 10 mm above its own) with upper moving
+// up and lower down; momentum kept to round-off and upper not turning at every row (the contact
+// acts on the line through both middles). Returns the run's series for a case's own checks.
+Series crossed_pair_parts(const std::string& name, const std::string& lower_shape, double lower_inertia,
+                          const std::string& upper_shape, double upper_inertia, double upper_reach) {
+  const std::string text = header(3e-5, 0.05) + body("lower", 1.0, lower_inertia, 0.0, 0.0, 0.0, 0.0, lower_shape) +
+                           body("upper", 1.0, upper_inertia, 0.0, 0.005, 0.0, 0.0, upper_shape) +
+                           contact("lower", "upper", 1e4, 1.0);
+  const Series s = run_scene(name, text);
+  EXPECT_GT(s.rows.size(), 10u);
+  if (s.rows.empty()) return s;
+  const auto& last = s.rows.back();
+  EXPECT_EQ(s.rows.front()[s.column("contact_count")], 1.0);
+  EXPECT_EQ(last[s.column("contact_count")], 0.0);
+  const double gap = (last[s.column("probe.upper.y")] - upper_reach) - (last[s.column("probe.lower.y")] + 0.01);
+  std::printf("%s: gap at the end %.4f m, speeds %.4f and %.4f m/s\n", name.c_str(), gap,
+              last[s.column("probe.upper.vy")], last[s.column("probe.lower.vy")]);
+  EXPECT_GT(gap, 0.0);
+  EXPECT_GT(last[s.column("probe.upper.vy")], 0.0);
+  EXPECT_LT(last[s.column("probe.lower.vy")], 0.0);
+  for (const auto& row : s.rows) {
+    EXPECT_NEAR(row[s.column("probe.upper.vy")] + row[s.column("probe.lower.vy")], 0.0, 1e-12);
+    EXPECT_NEAR(row[s.column("probe.upper.vx")] + row[s.column("probe.lower.vx")], 0.0, 1e-12);
+    EXPECT_NEAR(row[s.column("probe.upper.omega")], 0.0, 1e-9);
+  }
+  return s;
+}
+
 TEST(RigidContact, BoxesCrossedLikeAPlusSignArePushedApartAlongTheShallowerWay) {
   // a 200 x 20 mm box across a 20 x 60 mm box 5 mm above its middle: no corner of either lies
   // inside the other. The separating axis test finds them overlapping by 35 mm upwards (45 mm
-  // downwards, 110 mm sideways): the tall box goes up, the long one down, no turning (the
-  // contact acts at the middle of the overlap, on the line through both centres)
-  const std::string text =
-      header(3e-5, 0.05) +
-      body("long", 1.0, 1.0 / 12.0 * (0.04 + 0.0004), 0.0, 0.0, 0.0, 0.0,
-           "{ type = \"box\", width = 0.2, height = 0.02 }") +
-      body("tall", 1.0, 1.0 / 12.0 * (0.0004 + 0.0036), 0.0, 0.005, 0.0, 0.0,
-           "{ type = \"box\", width = 0.02, height = 0.06 }") +
-      contact("long", "tall", 1e4, 1.0);
-  const Series s = run_scene("plus_sign", text);
-  ASSERT_GT(s.rows.size(), 10u);
-  const auto& first = s.rows.front();
-  const auto& last = s.rows.back();
-  EXPECT_EQ(first[s.column("contact_count")], 1.0);
-  EXPECT_EQ(last[s.column("contact_count")], 0.0);
-  // apart: the tall box's lower face above the long box's upper face, and moving away
-  const double gap = (last[s.column("probe.tall.y")] - 0.03) - (last[s.column("probe.long.y")] + 0.01);
-  std::printf("plus sign: gap at the end %.4f m, speeds %.4f and %.4f m/s\n", gap, last[s.column("probe.tall.vy")],
-              last[s.column("probe.long.vy")]);
-  EXPECT_GT(gap, 0.0);
-  EXPECT_GT(last[s.column("probe.tall.vy")], 0.0);
-  EXPECT_LT(last[s.column("probe.long.vy")], 0.0);
+  // downwards, 110 mm sideways): the tall box goes up, the long one down, no turning
+  const Series s = crossed_pair_parts("plus_sign", "{ type = \"box\", width = 0.2, height = 0.02 }",
+                                      1.0 / 12.0 * (0.04 + 0.0004), "{ type = \"box\", width = 0.02, height = 0.06 }",
+                                      1.0 / 12.0 * (0.0004 + 0.0036), 0.03);
+  ASSERT_FALSE(s.rows.empty());
   // the stored energy k d^2 / 2 = 6.1 J is the most they can take away (each at 2.47 m/s). Once
   // the tall box's lower corners enter the long box, the corner test takes over from the
   // separating axis and pushes the rest of the way (docs/contact.md): part of the energy stays
   // behind, and they leave at about 2.0 m/s
   const double stored = 0.5 * 1e4 * 0.035 * 0.035;
-  const double v_tall = last[s.column("probe.tall.vy")], v_long = last[s.column("probe.long.vy")];
-  const double kinetic = 0.5 * (v_tall * v_tall + v_long * v_long);
+  const auto& last = s.rows.back();
+  const double v_upper = last[s.column("probe.upper.vy")], v_lower = last[s.column("probe.lower.vy")];
+  const double kinetic = 0.5 * (v_upper * v_upper + v_lower * v_lower);
   EXPECT_LT(kinetic, stored * (1.0 + 1e-3));
   EXPECT_GT(kinetic, 0.5 * stored);
-  for (const auto& row : s.rows) {
-    EXPECT_NEAR(row[s.column("probe.tall.vy")] + row[s.column("probe.long.vy")], 0.0, 1e-12);
-    EXPECT_NEAR(row[s.column("probe.tall.vx")] + row[s.column("probe.long.vx")], 0.0, 1e-12);
-    EXPECT_NEAR(row[s.column("probe.tall.omega")], 0.0, 1e-9);
-  }
 }
 
 TEST(RigidContact, BarAcrossABoxWithBothEndsOutsideIsPushedApartLikeTheBox) {
-  // the plus sign again with the long box made a bar of the same size (200 mm between its end
-  // centres' outer edges less the rounding: ends at +-0.1 m, 20 mm wide): both bar ends lie far
-  // outside the tall box and no corner of the box lies inside the bar. The bar's straight part
-  // overlaps the box by 35 mm upwards, as the long box did, so they separate the same way
-  const std::string text =
-      header(3e-5, 0.05) +
-      body("long", 1.0, 1.0 / 12.0 * (0.04 + 0.0004), 0.0, 0.0, 0.0, 0.0,
-           "{ type = \"bar\", p1 = [-0.1, 0.0], p2 = [0.1, 0.0], width = 0.02 }") +
-      body("tall", 1.0, 1.0 / 12.0 * (0.0004 + 0.0036), 0.0, 0.005, 0.0, 0.0,
-           "{ type = \"box\", width = 0.02, height = 0.06 }") +
-      contact("long", "tall", 1e4, 1.0);
-  const Series s = run_scene("bar_across_box", text);
-  ASSERT_GT(s.rows.size(), 10u);
-  const auto& first = s.rows.front();
-  const auto& last = s.rows.back();
-  EXPECT_EQ(first[s.column("contact_count")], 1.0);
-  EXPECT_EQ(last[s.column("contact_count")], 0.0);
-  const double gap = (last[s.column("probe.tall.y")] - 0.03) - (last[s.column("probe.long.y")] + 0.01);
-  std::printf("bar across a box: gap at the end %.4f m, speeds %.4f and %.4f m/s\n", gap,
-              last[s.column("probe.tall.vy")], last[s.column("probe.long.vy")]);
-  EXPECT_GT(gap, 0.0);
-  EXPECT_GT(last[s.column("probe.tall.vy")], 0.0);
-  EXPECT_LT(last[s.column("probe.long.vy")], 0.0);
-  for (const auto& row : s.rows) {
-    EXPECT_NEAR(row[s.column("probe.tall.vy")] + row[s.column("probe.long.vy")], 0.0, 1e-12);
-    EXPECT_NEAR(row[s.column("probe.tall.vx")] + row[s.column("probe.long.vx")], 0.0, 1e-12);
-  }
+  // the plus sign again with the long box made a bar of the same size (ends at +-0.1 m, 20 mm
+  // wide): both bar ends lie far outside the tall box and no corner of the box lies inside the
+  // bar. The bar's straight part overlaps the box by 35 mm upwards, as the long box did, so they
+  // separate the same way
+  crossed_pair_parts("bar_across_box", "{ type = \"bar\", p1 = [-0.1, 0.0], p2 = [0.1, 0.0], width = 0.02 }",
+                     1.0 / 12.0 * (0.04 + 0.0004), "{ type = \"box\", width = 0.02, height = 0.06 }",
+                     1.0 / 12.0 * (0.0004 + 0.0036), 0.03);
 }
 
 TEST(RigidContact, BarsCrossedLikeAPlusSignArePushedApartWithoutTurning) {
-  // a bar along x across a bar along y whose middle is 5 mm higher: each bar's end centres lie
-  // 35 mm or more from the other's core, more than the two radii (20 mm), so only their straight
-  // parts find the overlap: 55 mm upwards, 65 mm downwards, 120 mm sideways. They part along y,
-  // the upright bar up, without turning (the contact acts on the line through both middles)
-  const std::string text =
-      header(3e-5, 0.05) +
-      body("flat", 1.0, 1.0 / 12.0 * 0.04, 0.0, 0.0, 0.0, 0.0,
-           "{ type = \"bar\", p1 = [-0.1, 0.0], p2 = [0.1, 0.0], width = 0.02 }") +
-      body("upright", 1.0, 1.0 / 12.0 * 0.01, 0.0, 0.005, 0.0, 0.0,
-           "{ type = \"bar\", p1 = [0.0, -0.04], p2 = [0.0, 0.04], width = 0.02 }") +
-      contact("flat", "upright", 1e4, 1.0);
-  const Series s = run_scene("bars_crossed", text);
-  ASSERT_GT(s.rows.size(), 10u);
-  EXPECT_EQ(s.rows.front()[s.column("contact_count")], 1.0);
-  const auto& last = s.rows.back();
-  EXPECT_EQ(last[s.column("contact_count")], 0.0);
-  // apart: the upright bar's lower end (core end less its radius) above the flat bar's top
-  const double gap = (last[s.column("probe.upright.y")] - 0.05) - (last[s.column("probe.flat.y")] + 0.01);
-  std::printf("bars crossed: gap at the end %.4f m, upright bar at %.4f m/s\n", gap, last[s.column("probe.upright.vy")]);
-  EXPECT_GT(gap, 0.0);
-  EXPECT_GT(last[s.column("probe.upright.vy")], 0.0);
-  for (const auto& row : s.rows) {
-    EXPECT_NEAR(row[s.column("probe.flat.vy")] + row[s.column("probe.upright.vy")], 0.0, 1e-12);
-    EXPECT_NEAR(row[s.column("probe.flat.vx")] + row[s.column("probe.upright.vx")], 0.0, 1e-12);
-    EXPECT_NEAR(row[s.column("probe.upright.omega")], 0.0, 1e-9);
-  }
+  // a bar along x across a bar along y: each bar's end centres lie 35 mm or more from the
+  // other's core, more than the two radii (20 mm), so only their straight parts find the
+  // overlap: 55 mm upwards, 65 mm downwards, 120 mm sideways. The upright bar's lowest point is
+  // its core end (40 mm) plus its radius below its middle
+  crossed_pair_parts("bars_crossed", "{ type = \"bar\", p1 = [-0.1, 0.0], p2 = [0.1, 0.0], width = 0.02 }",
+                     1.0 / 12.0 * 0.04, "{ type = \"bar\", p1 = [0.0, -0.04], p2 = [0.0, 0.04], width = 0.02 }",
+                     1.0 / 12.0 * 0.01, 0.05);
 }
 
 TEST(RigidContact, BoxStrikingABoxOffCentreKeepsMomentumAndAngularMomentum) {

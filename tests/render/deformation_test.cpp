@@ -106,10 +106,9 @@ TEST(Deformation, RoundsDownToOneTwoFive) {
   EXPECT_DOUBLE_EQ(round_down_125(1e-3), 1e-3);
 }
 
-TEST(Deformation, VirtualBodyMovesWithTheParticlesItHoldsOrdinaryBodiesStay) {
-  // a 20 x 4 beam bent gently (y -= c x^2), magnified ten times; its left column held by a
-  // virtual body, its right
-  // column by an ordinary rigid body
+// A 20 x 4 beam at 10 mm spacing bent gently (y -= c x^2): its left column held by a virtual
+// body (geometry body 1), its right column by an ordinary rigid body (body 2); body 0 the ground.
+Snapshot bent_held_beam() {
   Snapshot s = grid_body(20, 4, 0.01);
   auto geometry = std::make_shared<SceneGeometry>(*s.geometry);
   geometry->bodies.resize(3);
@@ -122,6 +121,13 @@ TEST(Deformation, VirtualBodyMovesWithTheParticlesItHoldsOrdinaryBodiesStay) {
   }
   s.geometry = geometry;
   for (size_t i = 0; i < s.px.size(); ++i) s.py[i] -= float(0.05 * s.px[i] * s.px[i]);
+  return s;
+}
+
+TEST(Deformation, VirtualBodyMovesWithTheParticlesItHoldsOrdinaryBodiesStay) {
+  // the bent beam magnified ten times: its left column held by a virtual body, its right column
+  // by an ordinary rigid body
+  const Snapshot s = bent_held_beam();
   std::vector<float> x, y;
   magnify_deformation(s, 10.0, x, y);
   const std::vector<RigidShift> shifts = magnified_body_shifts(s, x, y);
@@ -148,17 +154,9 @@ TEST(Deformation, VirtualBodyMovesWithTheParticlesItHoldsOrdinaryBodiesStay) {
 }
 
 TEST(Deformation, ProbesAreDrawnOnWhatCarriesThem) {
-  // the bent beam again, magnified ten times: a probe on a particle of its free end, a probe on
-  // the virtual body holding its left column, one on the ordinary body and one on the ground
-  Snapshot s = grid_body(20, 4, 0.01);
-  auto geometry = std::make_shared<SceneGeometry>(*s.geometry);
-  geometry->bodies.resize(3);
-  geometry->bodies[0].ground = true;
-  geometry->bodies[1].is_virtual = true;
-  geometry->particle_body.assign(s.px.size(), 0);
-  for (int j = 0; j < 4; ++j) geometry->particle_body[j * 20] = 1;
-  s.geometry = geometry;
-  for (size_t i = 0; i < s.px.size(); ++i) s.py[i] -= float(0.05 * s.px[i] * s.px[i]);
+  // the bent beam again, magnified ten times: a probe on a particle of its right end, a probe
+  // on the virtual body holding its left column, one on the ordinary body and one on the ground
+  const Snapshot s = bent_held_beam();
   std::vector<float> x, y;
   magnify_deformation(s, 10.0, x, y);
   const std::vector<RigidShift> shifts = magnified_body_shifts(s, x, y);

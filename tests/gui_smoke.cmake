@@ -158,7 +158,7 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   # exported; two series in one plot, exported and compared with series.csv), the knife, the
   # inspector of a rigid body clicked, the drawing of active contacts (key and box), the history
   # (Left, Right, the timeline slider, resume)
-  foreach(case record_png record_mp4 keys damping refusal spring deform teach inspect plot plot_series knife body
+  foreach(case record_png record_plot record_mp4 keys damping refusal spring deform teach inspect plot plot_series knife body
                contacts history)
     gui_input_test(${case})
   endforeach()

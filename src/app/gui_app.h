@@ -96,8 +96,10 @@ class GuiApp {
   void run_pending_actions(int fb_width, int fb_height);
   void pump_recording();
   void write_recorded_frame(const Snapshot& frame, FrameWriter& writer);
-  // pictures without the panels, as recorded frames and screenshots show them
-  RgbaImage draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, int width, int height);
+  // pictures without the panels, as recorded frames and screenshots show them; with the plot
+  // window open, its plot over the picture from `rows`
+  RgbaImage draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, int width, int height,
+                         const PlotHistory& rows);
   static bool make_target(int width, int height, unsigned& fbo, unsigned& rbo);
   void write_picture(const std::string& path, int fb_width, int fb_height);
 
@@ -195,6 +197,7 @@ class GuiApp {
   std::unique_ptr<FrameWriter> writer_;
   unsigned fbo_ = 0, color_rbo_ = 0;
   Camera record_camera_;
+  PlotHistory record_rows_;         // the recorded frames' series rows, for the plot over them
   int record_width_ = 0, record_height_ = 0;
   std::string record_message_;
 };

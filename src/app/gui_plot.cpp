@@ -71,7 +71,7 @@ void GuiApp::plot_window(int fb_width, int fb_height) {
     plot_more_.push_back(added);
   for (size_t k = 0; k < plot_more_.size(); ++k) {
     if (k > 0) ImGui::SameLine();
-    ImGui::PushStyleColor(ImGuiCol_Text, plot_colour(k + 1));
+    ImGui::PushStyleColor(ImGuiCol_Text, imgui_colour(plot_colour(k + 1)));
     const bool remove = ImGui::SmallButton(("x " + plot_more_[k]).c_str());
     ImGui::PopStyleColor();
     dump_.note_item("plot_remove=" + plot_more_[k]);
@@ -111,7 +111,7 @@ void GuiApp::plot_window(int fb_width, int fb_height) {
   view.x_lo = plot_x_lo_;
   view.x_hi = plot_x_hi_;
   const PlotFrame frame = draw_plot(*ImGui::GetWindowDrawList(), origin, size, history_, view);
-  const ImVec2 p0 = frame.p0, p1 = frame.p1;
+  const PlotPoint p0 = frame.p0, p1 = frame.p1;
   const auto from_x = [&](float px) { return plot_x_lo_ + (px - p0.x) / (p1.x - p0.x) * (plot_x_hi_ - plot_x_lo_); };
 
   // zoom along x about the pointer (wheel), pan (left-drag), whole range again (double-click);
@@ -137,7 +137,7 @@ void GuiApp::plot_window(int fb_width, int fb_height) {
     float distance = HUGE_VALF;
     for (size_t k = 0; k < frame.points.size(); ++k) {
       for (size_t i = 0; i < frame.points[k].size(); ++i) {
-        const ImVec2 p = frame.points[k][i];
+        const PlotPoint p = frame.points[k][i];
         const float d = std::fabs(p.x - io.MousePos.x) + (plot_x_ == "t" && frame.points.size() == 1
                                                               ? 0.0f
                                                               : std::fabs(p.y - io.MousePos.y));
@@ -145,7 +145,8 @@ void GuiApp::plot_window(int fb_width, int fb_height) {
       }
     }
     if (distance < HUGE_VALF) {
-      ImGui::GetWindowDrawList()->AddCircleFilled(frame.points[best_series][best], 3.5f, IM_COL32(90, 220, 255, 255));
+      const PlotPoint nearest = frame.points[best_series][best];
+      ImGui::GetWindowDrawList()->AddCircleFilled(ImVec2(nearest.x, nearest.y), 3.5f, IM_COL32(90, 220, 255, 255));
       const size_t row = frame.rows[best_series][best];
       const std::string& y = view.y_columns[best_series];
       ImGui::SetTooltip("%s = %.6g\n%s = %.6g", plot_axis_title(plot_x_).c_str(), xs[row],

@@ -62,17 +62,33 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
   }
   // the movie keeps the camera the window has now (the window stops growing its view too)
   record_camera_ = picture_camera(camera_, record_height_);
+  record_rows_.clear();
   record_message_ = "recording to " + path;
   SimCommand c = SimCommand::make(SimCommand::Kind::kRecord);
   c.number = interval;
   send(c);
 }
 
-RgbaImage GuiApp::draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, int width, int height) {
+RgbaImage GuiApp::draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, int width, int height,
+                               const PlotHistory& rows) {
+  // the plot window's plot: its series against its x column, over the range it shows when
+  // zoomed, else over every row; the cursor at the picture's time
+  OverlayPlot plot;
+  const bool plotted = show_plot_ && rows.size() > 0;
+  if (plotted) {
+    plot.history = &rows;
+    plot.view.x_column = plot_x_;
+    plot.view.y_columns = {plot_y_};
+    plot.view.y_columns.insert(plot.view.y_columns.end(), plot_more_.begin(), plot_more_.end());
+    plot.view.x_lo = plot_x_lo_;
+    plot.view.x_hi = plot_x_hi_;
+    if (!plot_zoomed_) plot_column_range(rows, plot_x_, plot.view.x_lo, plot.view.x_hi);
+    plot.view.cursor_time = frame.time;
+  }
   // draw off-screen with the overlay, read back (rows bottom-up in GL)
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);
   renderer_->draw(frame, camera, render_, width, height);
-  if (frame.geometry) renderer_->draw_overlay(frame, render_, width, height);
+  if (frame.geometry) renderer_->draw_overlay(frame, render_, width, height, 0, plotted ? &plot : nullptr);
   RgbaImage image;
   image.resize(width, height);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
@@ -108,7 +124,7 @@ void GuiApp::write_picture(const std::string& path, int fb_width, int fb_height)
   try {
     if (!snap.geometry) throw std::runtime_error("nothing drawn yet");
     if (!make_target(fb_width, fb_height, fbo, rbo)) throw std::runtime_error("off-screen framebuffer incomplete");
-    const RgbaImage image = draw_picture(snap, picture_camera(camera_, fb_height), fbo, fb_width, fb_height);
+    const RgbaImage image = draw_picture(snap, picture_camera(camera_, fb_height), fbo, fb_width, fb_height, history_);
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(1, &rbo);
     write_png(path, image);
@@ -125,7 +141,9 @@ void GuiApp::write_picture(const std::string& path, int fb_width, int fb_height)
 
 void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
   // the camera the recording started with: a movie's view does not jump
-  writer.write(draw_picture(frame, record_camera_, fbo_, record_width_, record_height_));
+  // the plot over a movie grows with it: the rows of the frames recorded so far
+  record_rows_.add(frame, 0.0);
+  writer.write(draw_picture(frame, record_camera_, fbo_, record_width_, record_height_, record_rows_));
 }
 
 void GuiApp::pump_recording() {

@@ -44,12 +44,7 @@ class PlaybackModel final : public SteppedModel {
   void fill_snapshot(Snapshot& out) const override {
     const Simulation& sim = replay_->simulation();
     sim.fill_snapshot(out);
-    const bool damage = sim.info().particles > 0, contact = !sim.scene().contacts.empty();
-    if (!columns_) {
-      columns_ = std::make_shared<const std::vector<std::string>>(series_columns(sim.probe_columns(), damage, contact));
-    }
-    out.series_columns = columns_;
-    series_values(sim.sample(), damage, contact, out.series);
+    fill_series_row(sim, columns_, out);
   }
   LiveSettings settings() const override { return replay_->simulation().settings(); }
   // the states are as the run computed them: live settings change nothing shown

@@ -31,12 +31,7 @@ class SimulationModel final : public SteppedModel {
     out.with_reactions = reactions_;
     sim_.fill_snapshot(out);
     // the row series.csv would hold now, for the plots
-    const bool damage = sim_.info().particles > 0, contact = !sim_.scene().contacts.empty();
-    if (!columns_) {
-      columns_ = std::make_shared<const std::vector<std::string>>(series_columns(sim_.probe_columns(), damage, contact));
-    }
-    out.series_columns = columns_;
-    series_values(sim_.sample(), damage, contact, out.series);
+    fill_series_row(sim_, columns_, out);
   }
   LiveSettings settings() const override { return sim_.settings(); }
   void apply(const LiveSettings& settings) override { sim_.apply(settings); }

@@ -17,7 +17,8 @@ namespace periflex {
 #ifndef PERIFLEX_WITH_HEADLESS
 
 std::unique_ptr<FrameSink> make_frame_sink(const RunOptions&, const std::string&,
-                                           std::shared_ptr<const SceneGeometry>) {
+                                           std::shared_ptr<const SceneGeometry>, const std::vector<std::string>&,
+                                           double) {
   throw InputError({"command line", 0, 0, "--render"},
                    "this build has no off-screen renderer (configured with -DPERIFLEX_HEADLESS=OFF)");
 }
@@ -66,6 +67,10 @@ class RecorderFrameSink : public FrameSink {
       : recorder_(std::move(options)), where_(std::move(where)) {}
 
   void submit(const Snapshot& snapshot, bool screenshot) override { recorder_.submit(snapshot, screenshot); }
+  void add_plot_row(std::shared_ptr<const std::vector<std::string>> columns, std::vector<double> row,
+                    long step) override {
+    recorder_.add_plot_row(std::move(columns), std::move(row), step);
+  }
 
   FrameStats finish() override {
     const RecorderStats recorded = recorder_.finish();
@@ -87,7 +92,8 @@ class RecorderFrameSink : public FrameSink {
 }  // namespace
 
 std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std::string& out_dir,
-                                           std::shared_ptr<const SceneGeometry> geometry) {
+                                           std::shared_ptr<const SceneGeometry> geometry,
+                                           const std::vector<std::string>& plot_columns, double end_time) {
   RecorderOptions recorder;
   recorder.width = options.width;
   recorder.height = options.height;
@@ -105,6 +111,9 @@ std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std:
   if (!parse_deform(options.deform, deform))
     throw InputError({"command line", 0, 0, "--deform"}, parse_deform_check(options.deform));
   recorder.settings.deform = static_cast<float>(deform);
+  recorder.plot_columns = plot_columns;
+  if (!options.plot_against.empty()) recorder.plot_against = options.plot_against;
+  recorder.plot_end_time = end_time;
   if (!options.movie_path.empty()) check_movie_output(options.movie_path, "--movie");
 
   // what the closing line names

@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/run_command.h"
 #include "solve/snapshot.h"
@@ -28,14 +29,21 @@ class FrameSink {
   // returns once it is copied (the drawing and encoding happen in other threads). Throws
   // std::runtime_error when an earlier frame failed.
   virtual void submit(const Snapshot& snapshot, bool screenshot = false) = 0;
+  // A row of series.csv for the plot over the frames (make_frame_sink's plot_columns), in time
+  // order with the snapshots.
+  virtual void add_plot_row(std::shared_ptr<const std::vector<std::string>> columns, std::vector<double> row,
+                            long step) = 0;
   // Waits for every frame to be written. Throws std::runtime_error on failure.
   virtual FrameStats finish() = 0;
 };
 
 // Checks what can be checked before simulating (ffmpeg present, output writable, sizes valid);
 // throws InputError. Then creates the sink: multisampling as options.samples says, or when that is
-// 0 as default_samples() of the geometry's particle count.
+// 0 as default_samples() of the geometry's particle count. With plot_columns (checked), each frame
+// carries a plot of them, its time axis to end_time; the snapshots must carry their series rows.
 std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std::string& out_dir,
-                                           std::shared_ptr<const SceneGeometry> geometry);
+                                           std::shared_ptr<const SceneGeometry> geometry,
+                                           const std::vector<std::string>& plot_columns = {},
+                                           double end_time = 0.0);
 
 }  // namespace periflex

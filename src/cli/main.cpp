@@ -67,6 +67,10 @@ void add_render_options(CLI::App* command, RunOptions& o) {
                       "default), fit (fit the first frame and keep it), or X,Y,HEIGHT (fixed, metres)");
   add_deform_option(command, o.deform);
   command->add_flag("--draw-contacts", o.draw_contacts, "Draw the active contacts (a dot and a stroke along the force)");
+  command->add_option("--plot", o.plot,
+                      "Draw a plot of series.csv columns over the frames, at the top right: Y or Y1+Y2+...")
+      ->type_name("Y[+Y...]");
+  command->add_option("--plot-against", o.plot_against, "The plot's x column (default t)")->type_name("X");
 }
 
 int run_main(int argc, char** argv) {

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "output/atomic_file.h"
 #include "output/checkpoint_replay.h"
+#include "output/series_row.h"
 #include "scene/toml_reader.h"
 
 namespace periflex {
@@ -36,9 +37,22 @@ int render_checkpoint_folder(RunOptions options) {
   // the one screenshot: the state nearest the time asked for
   const size_t shot = options.snapshot_at ? replay->nearest(*options.snapshot_at) : replay->size();
 
+  // the plot over the frames: the series rows of the states shown
+  const Simulation& sim = replay->simulation();
+  const std::vector<std::string> plot_columns =
+      options.plot.empty() ? std::vector<std::string>{}
+                           : plot_columns_checked(options, series_columns(sim.probe_columns(), sim.info().particles > 0,
+                                                                          !replay->scene().contacts.empty()));
+  std::shared_ptr<const std::vector<std::string>> plot_row_columns;
+  const auto show = [&](size_t k, Snapshot& out) {
+    replay->show(k, out);
+    if (!plot_columns.empty()) fill_series_row(sim, plot_row_columns, out);
+  };
+
   Snapshot snapshot;
-  replay->show(0, snapshot);
-  std::unique_ptr<FrameSink> sink = make_frame_sink(options, options.out_dir, snapshot.geometry);
+  show(0, snapshot);
+  std::unique_ptr<FrameSink> sink =
+      make_frame_sink(options, options.out_dir, snapshot.geometry, plot_columns, replay->end_time());
   std::string error;
   int signal_number = 0;
   try {
@@ -47,7 +61,7 @@ int render_checkpoint_folder(RunOptions options) {
         error = "interrupted at the state of t = " + format_number(replay->time(k));
         break;
       }
-      if (k > 0) replay->show(k, snapshot);
+      if (k > 0) show(k, snapshot);
       if (options.render) sink->submit(snapshot);
       if (k == shot) sink->submit(snapshot, true);
     }

@@ -25,6 +25,7 @@
 #include "output/atomic_file.h"
 #include "output/checkpoint_file.h"
 #include "output/run_record.h"
+#include "output/series_row.h"
 #include "output/series_writer.h"
 #include "output/summary_writer.h"
 #include "output/vtk_series.h"
@@ -135,6 +136,14 @@ int run_command(const RunOptions& requested) {
 
   Simulation sim(scene);
   const ModelInfo& info = sim.info();
+  // the plot over the frames: columns of this run's series.csv, refused before anything is run
+  std::shared_ptr<const std::vector<std::string>> plot_row_columns;
+  std::vector<std::string> plot_columns;
+  if (!options.plot.empty()) {
+    plot_row_columns = std::make_shared<const std::vector<std::string>>(
+        series_columns(sim.probe_columns(), info.particles > 0, !scene.contacts.empty()));
+    plot_columns = plot_columns_checked(options, *plot_row_columns);
+  }
 
   // a restart: the checkpoint must belong to this scene and program (refused with exit 2)
   const bool checkpointing = options.checkpoint_every > 0.0;
@@ -149,6 +158,7 @@ int run_command(const RunOptions& requested) {
     record.overrides = options.overrides;
     record.dt = options.dt;
     record.integrator = options.integrator;
+    record.until = options.until;
     record.scene_hash = scene_hash;
     record.program_version = PERIFLEX_VERSION;
     write_run_record(options.checkpoint_dir, record);
@@ -182,9 +192,16 @@ int run_command(const RunOptions& requested) {
   double solver_seconds = 0.0, solver_cpu = 0.0;
   double last_row_time = -1.0;
   auto write_row = [&]() {
-    if (!series->write(sim.sample())) {
+    const Sample sample = sim.sample();
+    if (!series->write(sample)) {
       throw NumericalError({"output sample", sim.step_count(), sim.time(), "a value to be written is not finite",
                             "lower solver.dt or enable constraint correction"});
+    }
+    // every row in the plot over the frames, not only the frames' own
+    if (!plot_columns.empty() && outputs.frames) {
+      std::vector<double> values;
+      series_values(sample, has_particles, !scene.contacts.empty(), values);
+      outputs.frames->add_plot_row(plot_row_columns, std::move(values), sim.step_count());
     }
     last_row_time = sim.time();
   };
@@ -211,7 +228,10 @@ int run_command(const RunOptions& requested) {
     const bool frame_due = frame_times.due(t, dt);
     const bool shot_due = snapshot_time && time_reached(t, *snapshot_time, dt);
     const bool vtk_due = outputs.vtk && sim.step_count() % options.vtk_every == 0;
-    if (frame_due || shot_due || vtk_due) sim.fill_snapshot(snapshot);
+    if (frame_due || shot_due || vtk_due) {
+      sim.fill_snapshot(snapshot);
+      if (!plot_columns.empty()) fill_series_row(sim, plot_row_columns, snapshot);
+    }
     if (frame_due) {
       outputs.frames->submit(snapshot);
       frame_times.advance_past(t, dt);
@@ -242,7 +262,7 @@ int run_command(const RunOptions& requested) {
     // rendering and VTK output are optional; the sink checks its own preconditions first
     if (options.render || options.snapshot_at) {
       sim.fill_snapshot(snapshot);
-      outputs.frames = make_frame_sink(options, out_dir, snapshot.geometry);
+      outputs.frames = make_frame_sink(options, out_dir, snapshot.geometry, plot_columns, end_time);
     }
     if (options.vtk_every > 0) {
       outputs.vtk = std::make_unique<VtkSeries>(out_dir + "/vtk");

@@ -41,6 +41,8 @@ struct RunOptions {
   std::string camera;                   // grow (default) | fit | "X,Y,HEIGHT"
   std::string deform;                   // deformation magnification: auto (default) | K >= 0
   bool draw_contacts = false;           // draw the active contacts and their forces
+  std::string plot;                     // series.csv columns plotted over the frames: "Y1+Y2"
+  std::string plot_against;             // the plot's x column; empty: t
 };
 
 // Returns the process exit code (0 ok, 2 bad input, 3 numerical failure, 1 other).

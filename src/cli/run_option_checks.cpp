@@ -71,8 +71,19 @@ void check_number(const std::string& flag, double value, double lo, double hi, c
                    format_number(value));
 }
 
+// --plot draws into frames, so it needs them; its names are checked once the columns are known.
+void check_plot_flags(const RunOptions& o) {
+  if (o.plot.empty()) {
+    if (!o.plot_against.empty()) fail("--plot-against", "needs --plot Y to say what is plotted against it");
+    return;
+  }
+  if (!o.render && !o.snapshot_at)
+    fail("--plot", "draws the plot into the frames: add --render, --frames D, --movie F or --snapshot-at T");
+}
+
 // The values of `run` that need no scene.
 void check_run_values(const RunOptions& o) {
+  check_plot_flags(o);
   if (o.frame_every != 0.0 && (!std::isfinite(o.frame_every) || o.frame_every <= 0.0 || o.frame_every > kMaxGeometricMagnitude))
     fail("--frame-every", "expected a positive, finite number of simulated seconds, found " + format_number(o.frame_every));
   check_number("--fps", o.fps, 1.0, 240.0, "a frame rate");
@@ -193,6 +204,25 @@ void check_replay_outputs(RunOptions& options, const std::string& scene_name) {
   if (!options.frames_dir.empty()) check_writable_folder("--frames", options.frames_dir);
   if (!options.movie_path.empty()) check_writable_file("--movie", options.movie_path);
   if (!options.screenshot_path.empty()) check_writable_file("--screenshot", options.screenshot_path);
+}
+
+std::vector<std::string> plot_columns_checked(const RunOptions& options, const std::vector<std::string>& columns) {
+  const auto check = [&](const std::string& flag, const std::string& name) {
+    if (std::find(columns.begin(), columns.end(), name) == columns.end())
+      fail(flag, (name.empty() ? std::string("an empty column name") : "no column '" + name + "'") +
+                     " in this run's series.csv; expected one of: " + join(columns));
+  };
+  std::vector<std::string> names;
+  size_t from = 0;
+  for (;;) {
+    const size_t plus = options.plot.find('+', from);
+    names.push_back(options.plot.substr(from, plus == std::string::npos ? std::string::npos : plus - from));
+    check("--plot", names.back());
+    if (plus == std::string::npos) break;
+    from = plus + 1;
+  }
+  if (!options.plot_against.empty()) check("--plot-against", options.plot_against);
+  return names;
 }
 
 void check_gui_options(const GuiCommandOptions& options) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "cli/gui_command.h"
 #include "cli/run_command.h"
@@ -30,6 +31,11 @@ void check_replay_flags(const RunOptions& options);
 // Then the output paths; fills options.out_dir with out/<safe scene name>-replay when it is
 // empty. Throws InputError naming the flag.
 void check_replay_outputs(RunOptions& options, const std::string& scene_name);
+
+// The columns --plot names ("Y1+Y2", split at '+'), each checked against `columns` (the run's
+// series.csv columns), and --plot-against likewise. Throws InputError naming the flag and listing
+// the columns.
+std::vector<std::string> plot_columns_checked(const RunOptions& options, const std::vector<std::string>& columns);
 
 // Checks the options of `gui` and that its scene loads within its budget. Throws InputError.
 void check_gui_options(const GuiCommandOptions& options);

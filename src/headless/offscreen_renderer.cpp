@@ -17,7 +17,8 @@ struct OffscreenRenderer::Impl {
   std::unique_ptr<Renderer> renderer;
 
   void make_framebuffers();
-  void draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings);
+  void draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings,
+            const OverlayPlot* plot = nullptr);
 };
 
 void OffscreenRenderer::Impl::make_framebuffers() {
@@ -55,10 +56,11 @@ void OffscreenRenderer::Impl::make_framebuffers() {
   check_gl("off-screen framebuffer set-up");
 }
 
-void OffscreenRenderer::Impl::draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings) {
+void OffscreenRenderer::Impl::draw(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings,
+                                   const OverlayPlot* plot) {
   glBindFramebuffer(GL_FRAMEBUFFER, draw_fbo);
   renderer->draw(snapshot, camera, settings, width, height);
-  renderer->draw_overlay(snapshot, settings, width, height);
+  renderer->draw_overlay(snapshot, settings, width, height, 0, plot);
 }
 
 OffscreenRenderer::OffscreenRenderer(int width, int height, int samples, const std::string& resource_root)
@@ -85,9 +87,9 @@ OffscreenRenderer::~OffscreenRenderer() {
 }
 
 void OffscreenRenderer::render(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings,
-                               RgbaImage& out) {
+                               RgbaImage& out, const OverlayPlot* plot) {
   Impl& m = *impl_;
-  m.draw(snapshot, camera, settings);
+  m.draw(snapshot, camera, settings, plot);
   // resolve the samples into the single-sample buffer, then read it
   GLuint source = m.draw_fbo;
   if (m.samples > 1) {

@@ -22,9 +22,10 @@ class OffscreenRenderer {
   OffscreenRenderer(const OffscreenRenderer&) = delete;
   OffscreenRenderer& operator=(const OffscreenRenderer&) = delete;
 
-  // Draws the snapshot (and the overlay when settings.show_overlay) and reads the picture back
-  // into out, rows top to bottom.
-  void render(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings, RgbaImage& out);
+  // Draws the snapshot (and the overlay when settings.show_overlay, with the plot when one is
+  // given) and reads the picture back into out, rows top to bottom.
+  void render(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings, RgbaImage& out,
+              const OverlayPlot* plot = nullptr);
   RgbaImage render(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings);
   // Draws without reading back (glFinish waits for the picture): for measuring drawing alone.
   void draw_only(const Snapshot& snapshot, const Camera& camera, const RenderSettings& settings);

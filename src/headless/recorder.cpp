@@ -1,5 +1,6 @@
 #include "headless/recorder.h"
 
+#include <algorithm>
 #include <chrono>
 #include <condition_variable>
 #include <deque>
@@ -12,6 +13,7 @@
 #include "headless/offscreen_renderer.h"
 #include "io/frame_writer.h"
 #include "io/image.h"
+#include "render/plot_figure.h"
 #include "render/view.h"
 
 namespace periflex {
@@ -58,6 +60,13 @@ struct Recorder::Impl {
   std::vector<Frame> frames = std::vector<Frame>(kFrameSlots);
   std::deque<int> free_jobs, jobs_to_draw;
   std::deque<int> free_frames, frames_to_file, frames_to_movie;
+  // rows for the plot, in time order, not yet drawn
+  struct PlotRow {
+    std::shared_ptr<const std::vector<std::string>> columns;
+    std::vector<double> values;
+    long step = 0;
+  };
+  std::deque<PlotRow> plot_rows_waiting;
   bool renderer_ready = false;
   bool closing = false;       // no more submissions
   bool drawing_done = false;  // the draw thread has handed over its last frame
@@ -102,6 +111,12 @@ void Recorder::Impl::draw_loop() {
     }
     Camera camera;
     bool have_camera = false;
+    // the plot over the frames: every frame's series row, the x axis over them
+    PlotHistory plot_rows(20000);
+    OverlayPlot plot;
+    plot.history = &plot_rows;
+    plot.view.x_column = options.plot_against;
+    plot.view.y_columns = options.plot_columns;
     for (;;) {
       // the next snapshot, in submission order
       int j = 0;
@@ -143,7 +158,27 @@ void Recorder::Impl::draw_loop() {
         free_frames.pop_front();
       }
       Frame& frame = frames[f];
-      renderer.render(job.snapshot, camera, options.settings, frame.image);
+      const bool plotted = !options.plot_columns.empty();
+      if (plotted) {
+        // the rows up to the frame's time, then the frame's own
+        std::vector<PlotRow> due;
+        {
+          std::lock_guard lock(mutex);
+          while (!plot_rows_waiting.empty() && plot_rows_waiting.front().step <= job.snapshot.step) {
+            due.push_back(std::move(plot_rows_waiting.front()));
+            plot_rows_waiting.pop_front();
+          }
+        }
+        for (const PlotRow& r : due) plot_rows.add_row(*r.columns, r.values, r.step, 0.0);
+        plot_rows.add(job.snapshot, 0.0);
+        if (plot_column_range(plot_rows, plot.view.x_column, plot.view.x_lo, plot.view.x_hi) &&
+            plot.view.x_column == "t" && options.plot_end_time > 0.0) {
+          plot.view.x_lo = std::min(0.0, plot_rows.first_time());
+          plot.view.x_hi = std::max(options.plot_end_time, plot_rows.last_time());
+        }
+        plot.view.cursor_time = job.snapshot.time;
+      }
+      renderer.render(job.snapshot, camera, options.settings, frame.image, plotted ? &plot : nullptr);
       frame.screenshot = job.screenshot;
       frame.index = job.screenshot ? -1 : sequence_frames;
       if (job.screenshot)
@@ -295,6 +330,14 @@ void Recorder::submit(const Snapshot& snapshot, bool screenshot) {
     m.changed.notify_all();
   }
   m.submit_seconds += seconds_between(start, Clock::now());
+}
+
+void Recorder::add_plot_row(std::shared_ptr<const std::vector<std::string>> columns, std::vector<double> row,
+                            long step) {
+  Impl& m = *impl_;
+  if (m.options.plot_columns.empty()) return;
+  std::lock_guard lock(m.mutex);
+  m.plot_rows_waiting.push_back({std::move(columns), std::move(row), step});
 }
 
 RecorderStats Recorder::finish() {

@@ -13,6 +13,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "render/renderer.h"
 #include "solve/snapshot.h"
@@ -36,6 +37,12 @@ struct RecorderOptions {
   enum class CameraMode { kGrow, kFit, kFixed };
   CameraMode camera_mode = CameraMode::kGrow;
   Camera camera;                   // for kFixed
+  // A plot over each frame (render/plot_figure.h) of these series.csv columns, one line each,
+  // against plot_against; its rows are those given to add_plot_row up to the frame's time, and
+  // the frame's own (the snapshot's series row). None when empty.
+  std::vector<std::string> plot_columns;
+  std::string plot_against = "t";
+  double plot_end_time = 0.0;      // against time: the x axis runs to it (0: to the latest row)
 };
 
 // Where the time went. Each stage runs in its own thread, so the busy times overlap and may add
@@ -67,6 +74,10 @@ class Recorder {
   // RecorderOptions::screenshot_path), and returns; waits while every snapshot slot is taken.
   // Rethrows the first error of any recording thread. Call from one thread at a time.
   void submit(const Snapshot& snapshot, bool screenshot = false);
+  // Hands over a row for the plot (the columns of series.csv, "t" first, and their values at
+  // simulation step `step`), in time order with the snapshots: each frame plots the rows up to
+  // its time. Ignored without RecorderOptions::plot_columns.
+  void add_plot_row(std::shared_ptr<const std::vector<std::string>> columns, std::vector<double> row, long step);
   // Waits until every submitted frame is written and the movie is closed, stops the threads and
   // returns the statistics; rethrows the first error of any recording thread. Call once.
   RecorderStats finish();

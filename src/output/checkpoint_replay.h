@@ -32,6 +32,8 @@ class CheckpointReplay {
   std::string path(size_t index) const;
   const CheckpointFolder& folder() const { return folder_; }
   const SceneDef& scene() const { return scene_; }
+  // The end time of the run that wrote the folder (its --until, else the scene's).
+  double end_time() const { return folder_.record().until.value_or(scene_.solver.end_time); }
   // The model, holding the state shown last (for its info, settings and sample).
   const Simulation& simulation() const { return *sim_; }
 

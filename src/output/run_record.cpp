@@ -45,6 +45,7 @@ void write_run_record(const std::string& dir, const RunRecord& record) {
   j["set"] = record.overrides;
   j["dt"] = record.dt ? nlohmann::json(*record.dt) : nlohmann::json(nullptr);
   j["integrator"] = record.integrator ? nlohmann::json(*record.integrator) : nlohmann::json(nullptr);
+  j["until"] = record.until ? nlohmann::json(*record.until) : nlohmann::json(nullptr);
   char hash[24];
   std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(record.scene_hash));
   j["scene_hash"] = hash;
@@ -67,6 +68,8 @@ RunRecord read_run_record(const std::string& dir) {
     r.overrides = j.at("set").get<std::vector<std::string>>();
     if (!j.at("dt").is_null()) r.dt = j.at("dt").get<double>();
     if (!j.at("integrator").is_null()) r.integrator = j.at("integrator").get<std::string>();
+    // records written before the end time was kept have none: the scene's end time stands
+    if (j.contains("until") && !j.at("until").is_null()) r.until = j.at("until").get<double>();
     const std::string hash = j.at("scene_hash").get<std::string>();
     size_t used = 0;
     r.scene_hash = std::stoull(hash, &used, 16);

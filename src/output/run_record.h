@@ -16,6 +16,7 @@ struct RunRecord {
   std::vector<std::string> overrides;   // --set values in order
   std::optional<double> dt;             // --dt
   std::optional<std::string> integrator;  // --integrator
+  std::optional<double> until;          // --until (the run's end time; not part of the scene's identity)
   uint64_t scene_hash = 0;              // scene_identity_hash() when written
   std::string program_version;          // the writer's PERIFLEX_VERSION
 

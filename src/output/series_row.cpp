@@ -34,6 +34,14 @@ void series_values(const Sample& s, bool with_damage, bool with_contact, std::ve
   out.insert(out.end(), s.probe_values.begin(), s.probe_values.end());
 }
 
+void fill_series_row(const Simulation& sim, std::shared_ptr<const std::vector<std::string>>& columns, Snapshot& out) {
+  const bool damage = sim.info().particles > 0, contact = !sim.scene().contacts.empty();
+  if (!columns)
+    columns = std::make_shared<const std::vector<std::string>>(series_columns(sim.probe_columns(), damage, contact));
+  out.series_columns = columns;
+  series_values(sim.sample(), damage, contact, out.series);
+}
+
 std::string series_unit(const std::string& column) {
   // probe columns: probe.<name>.<quantity>, the quantity after the last dot
   if (column.rfind("probe.", 0) == 0) {

@@ -2,10 +2,12 @@
 // window's plots, so a column plotted in the window is the column the run writes.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "solve/simulation.h"
+#include "solve/snapshot.h"
 
 namespace periflex {
 
@@ -16,6 +18,10 @@ std::vector<std::string> series_columns(const std::vector<std::string>& probe_co
 
 // The values of `sample` in the order of series_columns (out is replaced).
 void series_values(const Sample& sample, bool with_damage, bool with_contact, std::vector<double>& out);
+
+// Puts the row series.csv would hold now into the snapshot, for the plots: its columns are made
+// once into `columns` and shared by every snapshot after.
+void fill_series_row(const Simulation& sim, std::shared_ptr<const std::vector<std::string>>& columns, Snapshot& out);
 
 // The unit of a column as docs/running.md states it ("s", "J", "m", "m/s", "rad", "rad/s", "N",
 // "1/s"), "-" for counts and fractions, "" for a column it does not know.

@@ -19,7 +19,49 @@ void rect(SolidMesh& mesh, double x0, double y0, double x1, double y1, Rgba8 col
   mesh.triangle(Vec2(x0, y0), Vec2(x1, y1), Vec2(x0, y1), color);
 }
 
+// The plot's shapes as triangles; text in the overlay's font at `scale`.
+void append_plot_shapes(SolidMesh& mesh, const PlotFigure& figure, int scale) {
+  for (const PlotShape& s : figure.shapes) {
+    const auto at = [&](size_t k) { return Vec2(s.points[k].x, s.points[k].y); };
+    switch (s.kind) {
+      case PlotShape::Kind::kFill: rect(mesh, s.points[0].x, s.points[0].y, s.points[1].x, s.points[1].y, s.colour); break;
+      case PlotShape::Kind::kOutline: {
+        const Vec2 a = at(0), b = at(1);
+        mesh.polyline({a, Vec2(b.x(), a.y()), b, Vec2(a.x(), b.y())}, true, s.width, s.colour);
+        break;
+      }
+      case PlotShape::Kind::kLine: {
+        std::vector<Vec2> points;
+        for (size_t k = 0; k < s.points.size(); ++k) points.push_back(at(k));
+        mesh.polyline(points, false, s.width, s.colour);
+        break;
+      }
+      case PlotShape::Kind::kRing: mesh.ring_px(at(0), s.radius, s.width, s.colour); break;
+      case PlotShape::Kind::kText:
+        append_text(mesh, std::round(s.points[0].x), std::round(s.points[0].y), s.text, scale, s.colour);
+        break;
+    }
+  }
+}
+
 }  // namespace
+
+void plot_box(int left, int width, int height, PlotPoint& origin, PlotPoint& size) {
+  const int w = std::max(0, width - left);
+  size = {std::round(std::clamp(0.42f * w, 150.0f, 900.0f)), std::round(std::clamp(0.4f * height, 110.0f, 600.0f))};
+  origin = {width - kOverlayMargin - size.x, static_cast<float>(kOverlayMargin)};
+}
+
+void build_plot_overlay(SolidMesh& mesh, const PlotHistory& history, const PlotView& view, int left, int width,
+                        int height) {
+  const int scale = overlay_text_scale(width - left, height);
+  PlotTextMetrics metrics;
+  metrics.width = [scale](const std::string& s) { return static_cast<float>(text_width_px(s, scale)); };
+  metrics.height = static_cast<float>(text_height_px(scale));
+  PlotPoint origin, size;
+  plot_box(left, width, height, origin, size);
+  append_plot_shapes(mesh, layout_plot(origin, size, history, view, metrics, static_cast<float>(scale)), scale);
+}
 
 std::string format_length(double metres) {
   char text[32];

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "render/plot_figure.h"
 #include "render/solid_mesh.h"
 
 namespace periflex {
@@ -28,6 +29,15 @@ constexpr int kLegendBarMaxWidth = 220;
 
 // A length in the unit that reads best: "20 mm", "500 um", "2 m".
 std::string format_length(double metres);
+
+// Where a picture's plot goes: the top right, beside the text at the top left and above the
+// legend and scale bar at the bottom. Origin and size in pixels.
+void plot_box(int left, int width, int height, PlotPoint& origin, PlotPoint& size);
+
+// Appends the plot of `history` as `view` says, laid out in plot_box (render/plot_figure.h), with
+// the overlay's text.
+void build_plot_overlay(SolidMesh& mesh, const PlotHistory& history, const PlotView& view, int left, int width,
+                        int height);
 
 // Appends the overlay for a picture occupying columns [left, width) of a width x height target
 // (left > 0 keeps it beside a panel column). Text scale from overlay_text_scale.

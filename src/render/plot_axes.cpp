@@ -20,11 +20,21 @@ std::vector<double> nice_ticks(double lo, double hi, int most) {
       break;
     }
   }
-  std::vector<double> ticks;
-  const double first = std::ceil(lo / step - 1e-9) * step;
-  for (double t = first; t <= hi + 1e-9 * step && static_cast<int>(ticks.size()) < most + 1; t += step) {
-    // multiples of the step, not accumulated sums (no 0.30000000000000004)
-    ticks.push_back(std::round(t / step) * step);
+  // multiples of the step within the range, not accumulated sums (no 0.30000000000000004)
+  const auto multiples = [&](double s) {
+    std::vector<double> ticks;
+    const double first = std::ceil(lo / s - 1e-9) * s;
+    for (double t = first; t <= hi + 1e-9 * s && static_cast<int>(ticks.size()) < most + 1; t += s)
+      ticks.push_back(std::round(t / s) * s);
+    return ticks;
+  };
+  // a range straddling a multiple may hold only that one (-0.017 .. 0.017 at a step of 0.02):
+  // the next smaller round step (5, 2, 1 times the decade, then the decade below) gives two
+  std::vector<double> ticks = multiples(step);
+  for (int k = 0; ticks.size() < 2 && k < 6; ++k) {
+    const double mantissa = step / std::pow(10.0, std::floor(std::log10(step) + 1e-9));
+    step *= mantissa > 4.0 ? 0.4 : 0.5;  // 10 -> 5 -> 2 -> 1 (5 -> 2: 0.4; 2 -> 1 and 10 -> 5: 0.5)
+    ticks = multiples(step);
   }
   return ticks;
 }

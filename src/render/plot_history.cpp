@@ -24,13 +24,22 @@ void snapshot_row(const Snapshot& s, std::vector<double>& row) {
 }  // namespace
 
 void PlotHistory::add(const Snapshot& s, double steps_per_second) {
-  if (s.step == last_step_ && size() > 0) return;
-  last_step_ = s.step;
   // this snapshot's columns and row
   const bool has_row = s.series_columns && s.series.size() == s.series_columns->size() && !s.series.empty();
-  const std::vector<std::string>& names = has_row ? *s.series_columns : snapshot_columns();
-  if (has_row) row_ = s.series;
-  else snapshot_row(s, row_);
+  if (has_row) {
+    add_row(*s.series_columns, s.series, s.step, steps_per_second);
+  } else {
+    std::vector<double> row;
+    snapshot_row(s, row);
+    add_row(snapshot_columns(), row, s.step, steps_per_second);
+  }
+}
+
+void PlotHistory::add_row(const std::vector<std::string>& names, const std::vector<double>& row, long step,
+                          double steps_per_second) {
+  if (step == last_step_ && size() > 0) return;
+  last_step_ = step;
+  row_ = row;
   row_.push_back(steps_per_second);
   // other columns: a new history
   const bool same = names_.size() == names.size() + 1 && std::equal(names.begin(), names.end(), names_.begin());

@@ -19,6 +19,10 @@ class PlotHistory {
   // series row gives the columns the snapshot itself holds (time, energies, violation, damage).
   // Other columns than those held start a new history.
   void add(const Snapshot& s, double steps_per_second);
+  // Appends a row of `names` (series.csv's columns, "t" first) taken at simulation step `step`,
+  // as add does with a snapshot's row; a row of the step added last is left out.
+  void add_row(const std::vector<std::string>& names, const std::vector<double>& row, long step,
+               double steps_per_second);
   void clear();
   // Forgets the rows at time `t` and after (the window went back in its history to the state at
   // `t`: its row comes next, the later ones are recomputed).

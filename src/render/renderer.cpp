@@ -554,7 +554,7 @@ const char* field_unit(ColorField field) {
 }  // namespace
 
 void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height,
-                            int left) {
+                            int left, const OverlayPlot* plot) {
   if (!settings.show_overlay) return;
   Impl& m = *impl_;
 
@@ -580,6 +580,7 @@ void Renderer::draw_overlay(const Snapshot& snapshot, const RenderSettings& sett
   m.mesh.clear();
   m.mesh.set_pixel_world(1.0);
   build_overlay(m.mesh, content, left, width, height);
+  if (plot && plot->history) build_plot_overlay(m.mesh, *plot->history, plot->view, left, width, height);
   const float w = static_cast<float>(std::max(width, 1)), h = static_cast<float>(std::max(height, 1));
   const float pixels[16] = {2.0f / w, 0, 0, 0, 0, -2.0f / h, 0, 0, 0, 0, -1.0f, 0, -1.0f, 1.0f, 0, 1.0f};
   glViewport(0, 0, width, height);

@@ -8,6 +8,7 @@
 
 #include "core/resources.h"
 #include "render/camera.h"
+#include "render/plot_figure.h"
 #include "solve/snapshot.h"
 
 namespace periflex {
@@ -44,6 +45,12 @@ struct RenderSettings {
   float background[3] = {0.12f, 0.12f, 0.14f};
 };
 
+// A plot drawn over a picture, at the top right: the rows so far and what of them to show.
+struct OverlayPlot {
+  const PlotHistory* history = nullptr;
+  PlotView view;
+};
+
 class Renderer {
  public:
   // Loads shaders (shaders/) and colour maps (assets/colormaps/*.png) from the resource root
@@ -60,9 +67,10 @@ class Renderer {
   // current framebuffer (width x height pixels), after draw() of the same snapshot: the legend
   // shows the range that draw used. Text comes from the renderer's own glyph quads
   // (render/overlay_text.h), so any thread with a current context may call it. With left > 0 the
-  // overlay keeps to the columns right of it (beside the window's panels).
+  // overlay keeps to the columns right of it (beside the window's panels). With a plot, the
+  // plot too (render/plot_figure.h), so a recorded frame shows the plot the window shows.
   void draw_overlay(const Snapshot& snapshot, const RenderSettings& settings, int width, int height,
-                    int left = 0);
+                    int left = 0, const OverlayPlot* plot = nullptr);
   // Colour range used by the last draw (auto or fixed).
   float last_range_min() const;
   float last_range_max() const;

@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect | plot |
+# CASE: record_png | record_plot | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect | plot |
 #       plot_series | knife | body | contacts | history
 set -uo pipefail
 
@@ -115,6 +115,12 @@ record() {
   shift
   # a run that does not reach its end (and pause) while it records
   start flexible_pendulum.toml --set solver.end_time=1000 "$@"
+  # with the plot window open (P), the recorded frames carry its plot
+  if [[ -n "${WITH_PLOT:-}" ]]; then
+    xdotool mousemove --window "$window" 1000 150
+    tap p
+    wait_until 10 "P to open the plot window" '[[ -n "$(centre plot_canvas)" ]]'
+  fi
   click export_header
   click record_path
   retype "$target"
@@ -163,6 +169,19 @@ case "$case_name" in
     done
     if [[ -n "$png_check" ]]; then
       "$png_check" "$work/frames/frame_000003.png" --overlay || fail "frame 3 is not a picture with the overlay"
+      "$png_check" "$work/frames/frame_000003.png" --no-plot || fail "frame 3 has a plot, with the plot window closed"
+    fi
+    ;;
+  record_plot)
+    # the plot window open while recording: the frames carry its plot (kinetic energy against
+    # time), as `run --plot` draws it
+    WITH_PLOT=1 record "$work/frames"
+    [[ "$(state plot_series)" == kinetic ]] || fail "the plot shows $(state plot_series), not kinetic"
+    count=$(ls "$work/frames" | grep -c '^frame_[0-9]*\.png$')
+    ((count == recorded)) || fail "$count PNG files for $recorded frames recorded"
+    if [[ -n "$png_check" ]]; then
+      "$png_check" "$work/frames/frame_000004.png" --plot || fail "frame 4 has no plot"
+      "$png_check" "$work/frames/frame_000004.png" --overlay || fail "frame 4 is not a picture with the overlay"
     fi
     ;;
   record_mp4)

@@ -12,6 +12,10 @@
 //                                            recorded frames of a scene with particles
 //   gui_png_check IMAGE --no-overlay         the opposite, for a picture drawn without it
 //                                            (proves the overlay check can fail)
+//   gui_png_check IMAGE --plot               the plot is drawn over the picture: pixels of the first
+//                                            series' line inside the plot's box at the top right
+//                                            (render/overlay_layout.h plot_box), below its title
+//   gui_png_check IMAGE --no-plot            the opposite, for a picture drawn without it
 //   gui_png_check IMAGE --grip-holds         the leftmost virtual body's outline encloses the
 //                                            particles it holds (a magnified deformation)
 //   gui_png_check IMAGE --lower-edge-spread MIN MAX
@@ -36,6 +40,7 @@
 #include "app/view_fit.h"
 #include "core/resources.h"
 #include "io/image.h"
+#include "render/overlay_layout.h"
 #include "render/renderer.h"
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"
@@ -72,7 +77,7 @@ constexpr size_t kMinBarColours = 16;
 int usage() {
   std::fprintf(stderr,
                "usage: gui_png_check IMAGE [--crack SCENE | --no-crack SCENE | --overlay | --no-overlay |\n"
-               "                             --lower-edge-spread MIN MAX | --grip-holds]\n");
+               "                             --lower-edge-spread MIN MAX | --grip-holds | --plot | --no-plot]\n");
   return 2;
 }
 
@@ -255,6 +260,24 @@ bool grip_holds_its_particles(const RgbaImage& image) {
          grip[3] >= held[3] - 2;
 }
 
+// Pixels within 40 (summed over r, g, b) of the first series' colour in the lower 60 % of the
+// plot's box: the box's background hides the scene under it to a seventh of its brightness, and
+// the title in that colour sits at the top, so only the series' line comes near it there.
+long plot_line_pixels(const RgbaImage& image) {
+  PlotPoint origin, size;
+  plot_box(0, image.width, image.height, origin, size);
+  const Rgba8 line = plot_colour(0);
+  long n = 0;
+  for (int y = static_cast<int>(origin.y + 0.4f * size.y); y < static_cast<int>(origin.y + size.y) && y < image.height;
+       ++y) {
+    for (int x = static_cast<int>(origin.x); x < static_cast<int>(origin.x + size.x) && x < image.width; ++x) {
+      const unsigned char* p = &image.pixels[4 * (static_cast<size_t>(y) * image.width + x)];
+      if (std::abs(p[0] - line.r) + std::abs(p[1] - line.g) + std::abs(p[2] - line.b) < 40) ++n;
+    }
+  }
+  return n;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -264,6 +287,17 @@ int main(int argc, char** argv) {
     try {
       const bool ok = argc == 3 && grip_holds_its_particles(read_png(argv[1]));
       std::printf("%s: the grip %s its particles: %s\n", argv[1], ok ? "holds" : "does not hold", ok ? "PASS" : "FAIL");
+      return ok ? 0 : 1;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "gui_png_check: %s\n", e.what());
+      return 1;
+    }
+  }
+  if (mode == "--plot" || mode == "--no-plot") {
+    try {
+      const long pixels = argc == 3 ? plot_line_pixels(read_png(argv[1])) : -1;
+      const bool ok = pixels >= 0 && (mode == "--plot" ? pixels >= 30 : pixels == 0);
+      std::printf("%s: %ld pixels of the plot's line in its box: %s\n", argv[1], pixels, ok ? "PASS" : "FAIL");
       return ok ? 0 : 1;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "gui_png_check: %s\n", e.what());

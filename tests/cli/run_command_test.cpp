@@ -133,6 +133,40 @@ TEST(RunCommand, CameraOptionIsCheckedAndUsed) {
   EXPECT_NE(r.output.find("--camera"), std::string::npos) << r.output;
 }
 
+// --plot names series.csv columns of the run and draws into frames: a column the run does not
+// write, an empty name, no frames to draw into and --plot-against alone are refused with exit 2,
+// naming the flag, before the run starts.
+TEST(RunCommand, PlotColumnsAreCheckedAgainstTheRunsSeries) {
+  const auto out = fresh_directory("plot_refusals");
+  const std::string frames = (out / "f").string();
+  const struct {
+    std::vector<std::string> flags;
+    const char* flag;
+    const char* says;
+  } cases[] = {
+      {{"--frames", frames, "--plot", "kinetic+no_such"}, "--plot", "no column 'no_such'"},
+      {{"--frames", frames, "--plot", "kinetic++fracture"}, "--plot", "an empty column name"},
+      {{"--frames", frames, "--plot", "kinetic", "--plot-against", "probe.nowhere.x"}, "--plot-against",
+       "no column 'probe.nowhere.x'"},
+      {{"--plot", "kinetic"}, "--plot", "add --render"},
+      {{"--frames", frames, "--plot-against", "t"}, "--plot-against", "needs --plot"},
+  };
+  for (const auto& c : cases) {
+    std::vector<std::string> args = {"run", scene("notched_plate.toml"), "--out", out.string(), "--quiet"};
+    args.insert(args.end(), c.flags.begin(), c.flags.end());
+    const auto r = run_child(args, kLimit);
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    EXPECT_NE(r.output.find(c.flag), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;
+    EXPECT_EQ(count_files(frames, ".png"), 0) << r.output;
+  }
+  // the refusal lists the columns there are
+  const auto r = run_child({"run", scene("notched_plate.toml"), "--out", out.string(), "--quiet", "--frames", frames,
+                            "--plot", "nothing"},
+                           kLimit);
+  EXPECT_NE(r.output.find("driver_work, energy_balance"), std::string::npos) << r.output;
+}
+
 // A screenshot time after the end used to print "screenshot in ..." and write nothing.
 TEST(RunCommand, ScreenshotAfterTheEndIsRefused) {
   const auto out = fresh_directory("late_shot");

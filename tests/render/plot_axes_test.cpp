@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include <cmath>
 
 namespace periflex {
@@ -29,6 +31,20 @@ TEST(PlotAxes, TicksAreRoundAndInsideTheRange) {
     EXPECT_NEAR(std::remainder(v, step), 0.0, 1e-12);
   }
   EXPECT_EQ(nice_ticks(3.0, 3.0, 5), (std::vector<double>{3.0}));
+}
+
+// A range about zero whose round step would leave only the zero tick in it (the flexible
+// pendulum's energies in a recorded frame's plot showed "0" alone): two ticks at least.
+TEST(PlotAxes, RangeStraddlingOneMultipleStillGetsTwoTicks) {
+  for (const auto& [lo, hi, most] : {std::tuple{-0.0175, 0.0175, 4}, std::tuple{-0.9, 0.9, 2},
+                                     std::tuple{0.95, 1.05, 2}, std::tuple{-3.9e-6, 4.1e-6, 3}}) {
+    const std::vector<double> t = nice_ticks(lo, hi, most);
+    ASSERT_GE(t.size(), 2u) << lo << " .. " << hi;
+    for (double v : t) {
+      EXPECT_GE(v, lo) << lo << " .. " << hi;
+      EXPECT_LE(v, hi) << lo << " .. " << hi;
+    }
+  }
 }
 
 TEST(PlotAxes, LabelsHaveTheStepsDigitsOnly) {

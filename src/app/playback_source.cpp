@@ -11,8 +11,8 @@
 #include <thread>
 
 #include "core/error.h"
-#include "output/checkpoint_replay.h"
-#include "output/series_row.h"
+#include "output/checkpoint_file.h"
+#include "output/state_replay.h"
 
 namespace periflex {
 
@@ -21,7 +21,7 @@ namespace {
 // The replay as the worker's model: a step shows the requested state, or the next one.
 class PlaybackModel final : public SteppedModel {
  public:
-  PlaybackModel(std::unique_ptr<CheckpointReplay> replay, std::shared_ptr<PlaybackSource::Cursor> cursor)
+  PlaybackModel(std::unique_ptr<StateReplay> replay, std::shared_ptr<PlaybackSource::Cursor> cursor)
       : replay_(std::move(replay)), cursor_(std::move(cursor)) {
     show(0);
   }
@@ -41,11 +41,8 @@ class PlaybackModel final : public SteppedModel {
   long step_count() const override { return snapshot_step_; }
   double end_time() const override { return replay_->times().back(); }
   const ModelInfo& info() const override { return replay_->simulation().info(); }
-  void fill_snapshot(Snapshot& out) const override {
-    const Simulation& sim = replay_->simulation();
-    sim.fill_snapshot(out);
-    fill_series_row(sim, columns_, out);
-  }
+  // the state shown, as the replay filled it (its series row when it has one)
+  void fill_snapshot(Snapshot& out) const override { out = scratch_; }
   LiveSettings settings() const override { return replay_->simulation().settings(); }
   // the states are as the run computed them: live settings change nothing shown
   void apply(const LiveSettings&) override {}
@@ -63,17 +60,16 @@ class PlaybackModel final : public SteppedModel {
     snapshot_step_ = scratch_.step;
     cursor_->shown = index;
   }
-  std::unique_ptr<CheckpointReplay> replay_;
+  std::unique_ptr<StateReplay> replay_;
   std::shared_ptr<PlaybackSource::Cursor> cursor_;
   long shown_ = 0;
   long snapshot_step_ = 0;
   Snapshot scratch_;
-  mutable std::shared_ptr<const std::vector<std::string>> columns_;
 };
 
-std::unique_ptr<CheckpointReplay> open_replay(const std::string& dir) {
+std::unique_ptr<StateReplay> open_replay(const std::string& dir) {
   try {
-    return std::make_unique<CheckpointReplay>(dir);
+    return open_state_replay(dir);
   } catch (const CheckpointError& e) {
     throw InputError({"command line", 0, 0, "play"}, std::string("cannot replay: ") + e.what());
   }
@@ -83,13 +79,13 @@ std::unique_ptr<CheckpointReplay> open_replay(const std::string& dir) {
 
 PlaybackSource::PlaybackSource(const std::string& dir) : dir_(dir), cursor_(std::make_shared<Cursor>()) {
   auto replay = open_replay(dir);
-  scene_path_ = replay->folder().record().scene_path;
+  scene_path_ = replay->scene_path();
   times_ = replay->times();
   for (size_t k = 0; k < replay->size(); ++k) {
     const std::string path = replay->path(k);
     files_.push_back(path.empty() ? "the scene's start" : std::filesystem::path(path).filename().string());
   }
-  pending_ = std::make_shared<std::unique_ptr<CheckpointReplay>>(std::move(replay));
+  pending_ = std::make_shared<std::unique_ptr<StateReplay>>(std::move(replay));
 }
 
 PlaybackSource::~PlaybackSource() = default;
@@ -107,7 +103,7 @@ ModelFactory PlaybackSource::factory() {
   };
   auto cursor = cursor_;
   f.build = [pending, dir, cursor](const SceneDef&) -> std::unique_ptr<SteppedModel> {
-    std::unique_ptr<CheckpointReplay> replay = *pending ? std::move(*pending) : open_replay(dir);
+    std::unique_ptr<StateReplay> replay = *pending ? std::move(*pending) : open_replay(dir);
     return std::make_unique<PlaybackModel>(std::move(replay), cursor);
   };
   return f;
@@ -148,7 +144,7 @@ void PlaybackSource::draw(SimWorker& worker, WidgetDump& dump, int fb_width, int
   }
   dump.note_item("playback_slider");
   ImGui::PopItemWidth();
-  ImGui::TextDisabled("%s   (Left / Right: previous / next checkpoint, Space: play)", files_[shown].c_str());
+  ImGui::TextDisabled("%s   (Left / Right: previous / next state, Space: play)", files_[shown].c_str());
   ImGui::End();
   dump.state("playback_index", static_cast<double>(shown));
   dump.state("playback_count", static_cast<double>(count));

@@ -1,6 +1,6 @@
-// `periflex play DIR`: the window on a checkpoint folder instead of a running scene. The
-// simulation thread keeps its place but steps nothing: its model is a replay
-// (output/checkpoint_replay.h) whose "step" puts the next checkpoint in place, so Right, the
+// `periflex play DIR`: the window on a checkpoint folder (or a run's VTK series) instead of a
+// running scene. The simulation thread keeps its place but steps nothing: its model is a replay
+// (output/state_replay.h) whose "step" puts the next state in place, so Right, the
 // step button and a script's `step` move one checkpoint on, Space plays them through at the
 // window's speed, Backspace goes back to the first. Left and the timeline slider ask for a
 // state by index (the request is taken at the thread's next step). Drawing, colour fields,
@@ -18,7 +18,7 @@
 
 namespace periflex {
 
-class CheckpointReplay;
+class StateReplay;
 
 class PlaybackSource {
  public:
@@ -53,7 +53,7 @@ class PlaybackSource {
   std::vector<std::string> files_;
   std::shared_ptr<Cursor> cursor_;
   // the replay built here, handed to the worker's first build
-  std::shared_ptr<std::unique_ptr<CheckpointReplay>> pending_;
+  std::shared_ptr<std::unique_ptr<StateReplay>> pending_;
   int slider_ = 0;
 };
 

@@ -4,7 +4,7 @@
 //   periflex run SCENE [...]       headless run: series.csv, summary.json, frames, movies
 //   periflex check SCENE           validate and describe a scene
 //   periflex gui [SCENE] [...]     interactive visualiser
-//   periflex play DIR [...]        the visualiser on a checkpoint folder, without simulating
+//   periflex play DIR [...]        the visualiser on a checkpoint folder or VTK series, without simulating
 //   periflex study STUDY.toml      error against run time across integrators and steps
 //   periflex sweep SWEEP.toml      a grid of scene values, run locally or as a job list
 //   periflex stability [--quick]   the stiff and extreme cases, with a table of outcomes
@@ -120,8 +120,8 @@ int run_main(int argc, char** argv) {
   add_deform_option(gui_cmd, gui.deform);
 
   GuiCommandOptions play;
-  auto* play_cmd = app.add_subcommand("play", "Open the visualiser on a checkpoint folder and move through its states");
-  play_cmd->add_option("folder", play.playback_dir, "Checkpoint folder (written by run --checkpoint-every)")->required();
+  auto* play_cmd = app.add_subcommand("play", "Open the visualiser on a checkpoint folder (or a run's VTK series) and move through its states");
+  play_cmd->add_option("folder", play.playback_dir, "Checkpoint folder (run --checkpoint-every) or VTK series folder (run --vtk-every)")->required();
   play_cmd->add_option("--frames", play.frames, "Draw this many frames, then exit (for scripted runs)")
       ->check(CLI::NonNegativeNumber);
   play_cmd->add_option("--screenshot", play.screenshot, "Write the last frame to this PNG");

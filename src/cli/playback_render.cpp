@@ -1,4 +1,4 @@
-// Frames from a checkpoint folder: restore, snapshot, submit; the recorder does the rest.
+// Frames from a checkpoint folder or a VTK series: each state put in place, snapshot, submit.
 #include "cli/playback_render.h"
 
 #include <cstdio>
@@ -10,7 +10,8 @@
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "output/atomic_file.h"
-#include "output/checkpoint_replay.h"
+#include "output/checkpoint_file.h"
+#include "output/state_replay.h"
 #include "output/series_row.h"
 #include "scene/toml_reader.h"
 
@@ -21,9 +22,9 @@ int render_checkpoint_folder(RunOptions options) {
   // a folder that cannot be replayed is bad input at the argument that names it
   auto refuse = [&](const std::string& why) { return InputError(flag_location("scene"), why); };
   check_replay_flags(options);
-  std::unique_ptr<CheckpointReplay> replay;
+  std::unique_ptr<StateReplay> replay;
   try {
-    replay = std::make_unique<CheckpointReplay>(dir);
+    replay = open_state_replay(dir);
   } catch (const CheckpointError& e) {
     throw refuse(std::string("cannot replay: ") + e.what());
   }
@@ -37,20 +38,19 @@ int render_checkpoint_folder(RunOptions options) {
   // the one screenshot: the state nearest the time asked for
   const size_t shot = options.snapshot_at ? replay->nearest(*options.snapshot_at) : replay->size();
 
-  // the plot over the frames: the series rows of the states shown
+  // the plot over the frames: the series rows of the states shown (a VTK series has none)
   const Simulation& sim = replay->simulation();
-  const std::vector<std::string> plot_columns =
-      options.plot.empty() ? std::vector<std::string>{}
-                           : plot_columns_checked(options, series_columns(sim.probe_columns(), sim.info().particles > 0,
-                                                                          !replay->scene().contacts.empty()));
-  std::shared_ptr<const std::vector<std::string>> plot_row_columns;
-  const auto show = [&](size_t k, Snapshot& out) {
-    replay->show(k, out);
-    if (!plot_columns.empty()) fill_series_row(sim, plot_row_columns, out);
-  };
+  std::vector<std::string> plot_columns;
+  if (!options.plot.empty()) {
+    if (!replay->has_series_rows())
+      throw InputError(flag_location("--plot"), "a VTK series holds no series.csv rows to plot; replay the run's "
+                                                "checkpoints, or plot while the run draws its frames");
+    plot_columns = plot_columns_checked(options, series_columns(sim.probe_columns(), sim.info().particles > 0,
+                                                                !replay->scene().contacts.empty()));
+  }
 
   Snapshot snapshot;
-  show(0, snapshot);
+  replay->show(0, snapshot);
   std::unique_ptr<FrameSink> sink =
       make_frame_sink(options, options.out_dir, snapshot.geometry, plot_columns, replay->end_time());
   std::string error;
@@ -61,7 +61,7 @@ int render_checkpoint_folder(RunOptions options) {
         error = "interrupted at the state of t = " + format_number(replay->time(k));
         break;
       }
-      if (k > 0) show(k, snapshot);
+      if (k > 0) replay->show(k, snapshot);
       if (options.render) sink->submit(snapshot);
       if (k == shot) sink->submit(snapshot, true);
     }

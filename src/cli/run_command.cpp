@@ -167,6 +167,7 @@ int run_command(const RunOptions& requested) {
   RunSummary summary;
   summary.scene = scene.name;
   summary.scene_path = scene.path;
+  summary.overrides = options.overrides;
   summary.integrator = scene.solver.integrator;
   summary.dt = scene.solver.dt;
   write_summary(summary_path, info, summary);

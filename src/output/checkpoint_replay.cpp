@@ -6,6 +6,7 @@
 #include <iterator>
 #include <stdexcept>
 
+#include "output/series_row.h"
 #include "scene/scene_loader.h"
 
 namespace periflex {
@@ -59,14 +60,8 @@ void CheckpointReplay::show(size_t index, Snapshot& out) {
     }
   }
   sim_->fill_snapshot(out);
+  fill_series_row(*sim_, series_columns_, out);
   shown_ = index;
-}
-
-size_t CheckpointReplay::nearest(double t) const {
-  size_t best = 0;
-  for (size_t k = 1; k < times_.size(); ++k)
-    if (std::abs(times_[k] - t) < std::abs(times_[best] - t)) best = k;
-  return best;
 }
 
 }  // namespace periflex

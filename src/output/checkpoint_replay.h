@@ -12,38 +12,31 @@
 #include <vector>
 
 #include "output/checkpoint_folder.h"
-#include "solve/simulation.h"
-#include "solve/snapshot.h"
+#include "output/state_replay.h"
 
 namespace periflex {
 
-class CheckpointReplay {
+class CheckpointReplay final : public StateReplay {
  public:
   // Lists the folder and builds the model of its scene. Throws CheckpointError naming the file
   // (see CheckpointFolder; and a scene file that has changed since the run, or is gone), and
   // InputError / NumericalError as building and initialising the scene does.
   explicit CheckpointReplay(const std::string& dir);
 
-  // States to show, in time order (the start first when no checkpoint is at t = 0).
-  size_t size() const { return times_.size(); }
-  double time(size_t index) const { return times_.at(index); }
-  const std::vector<double>& times() const { return times_; }
-  // The file of state `index`; empty for the start.
-  std::string path(size_t index) const;
+  // The states: the start first when no checkpoint is at t = 0, then the checkpoints.
+  std::string path(size_t index) const override;
   const CheckpointFolder& folder() const { return folder_; }
-  const SceneDef& scene() const { return scene_; }
-  // The end time of the run that wrote the folder (its --until, else the scene's).
-  double end_time() const { return folder_.record().until.value_or(scene_.solver.end_time); }
+  const SceneDef& scene() const override { return scene_; }
+  const std::string& scene_path() const override { return folder_.record().scene_path; }
+  // The run's --until, else the scene's end time.
+  double end_time() const override { return folder_.record().until.value_or(scene_.solver.end_time); }
   // The model, holding the state shown last (for its info, settings and sample).
-  const Simulation& simulation() const { return *sim_; }
-
-  // Puts state `index` in place and fills `out` from it. Throws CheckpointError naming the file
-  // when the checkpoint cannot be read or does not fit the model.
-  void show(size_t index, Snapshot& out);
+  const Simulation& simulation() const override { return *sim_; }
+  bool has_series_rows() const override { return true; }
+  // Puts state `index` in place and fills `out` from it, its series row included.
+  void show(size_t index, Snapshot& out) override;
   // The state shown last (index), or none yet (size()).
   size_t shown() const { return shown_; }
-  // The index of the state nearest to time t.
-  size_t nearest(double t) const;
 
  private:
   CheckpointFolder folder_;
@@ -51,8 +44,8 @@ class CheckpointReplay {
   std::unique_ptr<Simulation> sim_;
   SimState start_;
   bool start_listed_ = false;   // index 0 is the scene's start
-  std::vector<double> times_;
   size_t shown_ = 0;
+  std::shared_ptr<const std::vector<std::string>> series_columns_;
 };
 
 }  // namespace periflex

@@ -20,6 +20,7 @@ void write_summary(const std::string& path, const ModelInfo& info, const RunSumm
   nlohmann::json j;
   j["scene"] = run.scene;
   j["scene_path"] = run.scene_path;
+  j["set"] = run.overrides;
   j["integrator"] = run.integrator;
   j["dt"] = finite_or_null(run.dt);
   j["steps"] = run.steps;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "solve/simulation.h"
 
@@ -11,6 +12,7 @@ namespace periflex {
 struct RunSummary {
   std::string scene;
   std::string scene_path;
+  std::vector<std::string> overrides;  // --set values in order (what replaying the run's VTK series loads)
   std::string integrator;
   double dt = 0.0;
   long steps = 0;                 // step count at the end (counted from t = 0)

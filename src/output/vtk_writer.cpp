@@ -56,13 +56,15 @@ class AppendedArrays {
   std::vector<char> block_;
 };
 
-void open_document(std::ostringstream& xml, const char* type, double time) {
+void open_document(std::ostringstream& xml, const char* type, double time, long step) {
   xml.precision(17);
   xml << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"" << type << "\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n"
       << "  <" << type << ">\n"
       << "    <FieldData>\n"
       << "      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" format=\"ascii\">" << time
+      << "</DataArray>\n"
+      << "      <DataArray type=\"Int64\" Name=\"STEP\" NumberOfTuples=\"1\" format=\"ascii\">" << step
       << "</DataArray>\n"
       << "    </FieldData>\n";
 }
@@ -131,7 +133,7 @@ std::string vtu_document(const Snapshot& s) {
 
   std::ostringstream xml;
   AppendedArrays data;
-  open_document(xml, "UnstructuredGrid", s.time);
+  open_document(xml, "UnstructuredGrid", s.time, s.step);
   xml << "    <Piece NumberOfPoints=\"" << n << "\" NumberOfCells=\"" << n << "\">\n";
   // point data: what ParaView colours by, warps by (displacement) and scales glyphs by (volume)
   xml << "      <PointData Scalars=\"damage\" Vectors=\"displacement\">\n";
@@ -185,7 +187,7 @@ std::string vtp_bodies_document(const Snapshot& s) {
   }
   std::ostringstream xml;
   AppendedArrays data;
-  open_document(xml, "PolyData", s.time);
+  open_document(xml, "PolyData", s.time, s.step);
   xml << "    <Piece NumberOfPoints=\"" << points.size() / 3 << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\""
       << " NumberOfStrips=\"0\" NumberOfPolys=\"" << offsets.size() << "\">\n";
   xml << "      <CellData Scalars=\"body\">\n";

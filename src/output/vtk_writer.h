@@ -6,7 +6,7 @@
 //     cell data body (index, 0 = ground), virtual (1 for virtual bodies), position (the body's
 //     reference point, a 3-vector) and angle [rad].
 // Values are stored as raw little-endian binary in an appended block (UInt64 sizes), so files
-// are compact and keep every digit. Both carry the time as field data TIME. Files are written
+// are compact and keep every digit. Both carry the time and the step as field data TIME and STEP. Files are written
 // under a temporary name and renamed, so a run killed part-way leaves only complete files.
 // docs/running.md lists the arrays.
 #pragma once

@@ -4,7 +4,8 @@
 # window under Xvfb, real key presses through xdotool. Right shows the next checkpoint, Left the
 # one before, S writes the picture of the state shown (its name carries the time shown); the
 # window reads its state through PERIFLEX_GUI_WIDGETS (src/app/widget_dump.h). A folder that
-# cannot be replayed exits 2 before any window opens.
+# cannot be replayed exits 2 before any window opens. Then the VTK series of a run, played the
+# same way.
 #
 # Usage (inside an X display, e.g. under xvfb-run): gui_play.sh PERIFLEX SCENES_DIR OUT_DIR
 set -uo pipefail
@@ -27,6 +28,31 @@ tap() {
 # the time the window shows equals T (as the widget dump prints it, 9 digits)
 shows() { awk -v a="$(state time)" -v b="$1" 'BEGIN { exit !(a != "" && (a - b) ^ 2 < 1e-24) }'; }
 
+# opens the window on a folder, waits for its first frame and focuses it
+open_play() {
+  PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" play "$1" 2>"$log" &
+  pid=$!
+  wait_until 60 "the window's first frame on $1" '[[ -n "$(state playback_count)" ]]'
+  window=$(xdotool search --sync --pid "$pid" 2>/dev/null | head -n 1)
+  [[ -n "$window" ]] || fail "no window of process $pid"
+  xdotool windowfocus --sync "$window" 2>/dev/null || xdotool windowfocus "$window" || true
+  xdotool mousemove --window "$window" 1200 100
+}
+# Ctrl+Q, then the program ends on its own with exit code 0
+quit_play() {
+  xdotool keydown ctrl q && sleep 0.1
+  xdotool keyup q ctrl 2>/dev/null
+  local end=$((SECONDS + 30)) code
+  while kill -0 "$pid" 2>/dev/null; do
+    ((SECONDS < end)) || fail "the program did not exit within 30 s of Ctrl+Q"
+    sleep 0.1
+  done
+  wait "$pid"
+  code=$?
+  pid=""
+  ((code == 0)) || fail "exit code $code"
+}
+
 # the run to replay
 "$periflex" run "$scenes/notched_plate.toml" --quiet --until 6e-4 --checkpoint-every 1.37e-4 --threads 1 \
   --out "$work/run" >"$work/run.txt" 2>&1 || fail "the checkpointing run failed: $(cat "$work/run.txt")"
@@ -40,13 +66,7 @@ code=$?
 grep -q "holds no checkpoint" "$work/empty.txt" || fail "an empty folder: $(cat "$work/empty.txt")"
 
 cd "$work" || fail "cd $work"
-PERIFLEX_GUI_WIDGETS="$widgets" "$periflex" play "$folder" 2>"$log" &
-pid=$!
-wait_until 60 "the window's first frame" '[[ -n "$(state playback_count)" ]]'
-window=$(xdotool search --sync --pid "$pid" 2>/dev/null | head -n 1)
-[[ -n "$window" ]] || fail "no window of process $pid"
-xdotool windowfocus --sync "$window" 2>/dev/null || xdotool windowfocus "$window" || true
-xdotool mousemove --window "$window" 1200 100
+open_play "$folder"
 
 # the start and the four checkpoints; the window opens paused on the start
 [[ "$(state playback_count)" == 5 ]] || fail "$(state playback_count) states listed, expected 5"
@@ -75,16 +95,26 @@ tap Right
 wait_until 10 "Right past the last to stay on it (t = 5.48e-4)" 'shows 5.48e-4'
 [[ "$(state running)" == 0 ]] || fail "stepping started the replay running"
 
-# Ctrl+Q, then the program ends on its own with exit code 0
-xdotool keydown ctrl q && sleep 0.1
-xdotool keyup q ctrl 2>/dev/null
-end=$((SECONDS + 30))
-while kill -0 "$pid" 2>/dev/null; do
-  ((SECONDS < end)) || fail "the program did not exit within 30 s of Ctrl+Q"
-  sleep 0.1
-done
-wait "$pid"
-code=$?
-pid=""
-((code == 0)) || fail "exit code $code"
+quit_play
+
+# the VTK series of a run (every 250 steps = 1e-4 s) played the same way: seven states
+"$periflex" run "$scenes/notched_plate.toml" --quiet --until 6e-4 --vtk-every 250 --threads 1 \
+  --out "$work/vtk_run" >"$work/vtk_run.txt" 2>&1 || fail "the VTK run failed: $(cat "$work/vtk_run.txt")"
+mkdir -p "$work/vtk_shots" && cd "$work/vtk_shots" || fail "cd $work/vtk_shots"
+rm -f "$widgets"
+open_play "$work/vtk_run/vtk"
+[[ "$(state playback_count)" == 7 ]] || fail "$(state playback_count) VTK states listed, expected 7"
+shows 0 || fail "the VTK series opened at t = $(state time), not at the start"
+tap s
+wait_until 10 "the screenshot of the series' start" '[[ -s periflex_notched_plate_t0.png ]]'
+tap Right
+tap Right
+wait_until 10 "two Right presses through the series (t = 2e-4)" 'shows 2e-4'
+tap Left
+wait_until 10 "Left back one state of the series (t = 1e-4)" 'shows 1e-4'
+tap s
+wait_until 10 "the screenshot of t = 1e-4" '[[ -s periflex_notched_plate_t0.0001.png ]]'
+cmp -s periflex_notched_plate_t0.png periflex_notched_plate_t0.0001.png &&
+  fail "the VTK states at t = 0 and t = 1e-4 draw the same picture"
+quit_play
 echo "play: ok"

@@ -75,6 +75,42 @@ TEST(PlaybackRender, ReplayDrawsTheFramesOfTheLiveRunAtTheSameTimes) {
   EXPECT_GT(series.rows.back()[series.column("broken_bonds")], 0.0) << "the crack has not started";
 }
 
+// A run's VTK series (`--vtk-every N`) replayed as a checkpoint folder is: the frames equal the
+// live run's byte for byte where both were taken at the same steps, for the cracking plate (its
+// particles and the virtual bodies gripping it) and for the flexible four-bar (rigid crank and
+// rocker turning, their poses read from the .vtp files).
+TEST(PlaybackRender, VtkSeriesReplayDrawsTheFramesOfTheLiveRun) {
+  const struct {
+    const char* scene;
+    std::vector<std::string> timing;
+    size_t frames;
+  } cases[] = {
+      {"notched_plate.toml", {"--until", "6e-4", "--vtk-every", "250", "--frame-every", "1e-4"}, 7},
+      {"flexible_four_bar.toml", {"--until", "0.01", "--dt", "1e-6", "--vtk-every", "2000", "--frame-every", "2e-3"}, 6},
+  };
+  for (const auto& c : cases) {
+    const fs::path dir = fresh_directory(std::string("vtk_replay_") + c.scene);
+    std::vector<std::string> args = {"run", scene(c.scene), "--quiet", "--out", (dir / "live").string(), "--threads",
+                                     "1", "--frames", (dir / "live_frames").string(), "--size", "320x200"};
+    args.insert(args.end(), c.timing.begin(), c.timing.end());
+    const auto live = run_child(args, 120);
+    ASSERT_EQ(live.exit_code, 0) << live.output;
+    const auto replayed = run_child({"run", (dir / "live" / "vtk").string(), "--frames",
+                                     (dir / "replay_frames").string(), "--size", "320x200", "--out",
+                                     (dir / "replay").string()},
+                                    60);
+    ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
+    const auto live_frames = files_in(dir / "live_frames", ".png");
+    const auto replay_frames = files_in(dir / "replay_frames", ".png");
+    ASSERT_EQ(live_frames.size(), c.frames) << c.scene;
+    ASSERT_EQ(replay_frames.size(), c.frames) << c.scene;
+    for (size_t k = 0; k < c.frames; ++k)
+      EXPECT_TRUE(bytes_of(live_frames[k]) == bytes_of(replay_frames[k])) << c.scene << ": frame " << k << " differs";
+    // the states move: not one picture over and over
+    EXPECT_NE(bytes_of(replay_frames.front()), bytes_of(replay_frames.back())) << c.scene;
+  }
+}
+
 TEST(PlaybackRender, ScreenshotIsTheStateNearestTheTimeAsked) {
   const fs::path dir = fresh_directory("playback_shot");
   const fs::path folder = live_run(dir, {"--snapshot-at", "2.74e-4", "--screenshot", (dir / "live.png").string(),
@@ -88,6 +124,26 @@ TEST(PlaybackRender, ScreenshotIsTheStateNearestTheTimeAsked) {
   EXPECT_TRUE(bytes_of(dir / "live.png") == bytes_of(dir / "replay.png"));
 }
 #endif
+
+// A VTK series is replayed in the scene its run's summary.json names: without it, refused (exit
+// 2, naming summary.json); --plot has no series rows to draw there, refused naming the flag.
+TEST(PlaybackRender, VtkSeriesWithoutItsRunOrWithPlotIsRefused) {
+  const fs::path dir = fresh_directory("vtk_refused");
+  const auto run = run_child({"run", scene("pendulum.toml"), "--quiet", "--until", "0.05", "--out",
+                              (dir / "live").string(), "--vtk-every", "20"},
+                             60);
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  auto r = run_child({"run", (dir / "live" / "vtk").string(), "--frames", (dir / "f").string(), "--plot", "kinetic",
+                      "--out", (dir / "r").string()},
+                     60);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--plot"), std::string::npos) << r.output;
+  fs::copy(dir / "live" / "vtk", dir / "alone");
+  r = run_child({"run", (dir / "alone").string(), "--frames", (dir / "f").string(), "--out", (dir / "r").string()},
+                60);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("summary.json"), std::string::npos) << r.output;
+}
 
 TEST(PlaybackRender, FoldersThatCannotBeReplayedAreRefusedNamingTheFile) {
   const fs::path dir = fresh_directory("playback_refused");

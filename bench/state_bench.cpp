@@ -61,7 +61,7 @@ void WriteCheckpoint(benchmark::State& state) {
   header.program_version = PERIFLEX_VERSION;
   size_t bytes = 0;
   for (auto _ : state) {
-    sim.save_state(saved);
+    sim.save_state_for_file(saved);
     bytes = write_checkpoint(file_path(), header, saved);
   }
   state.counters["file_MB"] = static_cast<double>(bytes) / 1e6;
@@ -70,7 +70,7 @@ void WriteCheckpoint(benchmark::State& state) {
 void ReadCheckpoint(benchmark::State& state) {
   Simulation& sim = plate();
   SimState saved;
-  sim.save_state(saved);
+  sim.save_state_for_file(saved);
   CheckpointHeader header;
   write_checkpoint(file_path(), header, saved);
   for (auto _ : state) {

@@ -214,7 +214,7 @@ int run_command(const RunOptions& requested) {
     header.time = sim.time();
     header.steps = sim.step_count();
     header.checkpoint_every = options.checkpoint_every;
-    sim.save_state(saved);
+    sim.save_state_for_file(saved);
     const std::string path = options.checkpoint_dir + "/" + name;
     write_checkpoint(path, header, saved);
     ++checkpoints_written;

@@ -191,6 +191,7 @@ std::vector<uint8_t> encode_state(const SimState& s) {
   for (const auto& v : s.integrator.vectors) w.put_vector(v);
   w.put<int64_t>(s.integrator.accepted);
   w.put<int64_t>(s.integrator.rejected);
+  w.put<uint8_t>(s.integrator.predicted ? 1 : 0);
   // flexible bodies
   w.put<uint64_t>(s.flex.size());
   for (const FlexState& f : s.flex) {
@@ -257,6 +258,9 @@ SimState decode_state(const uint8_t* bytes, size_t size) {
   for (auto& v : s.integrator.vectors) r.get_vector(v, "the integrator cache");
   s.integrator.accepted = r.get<int64_t>("the integrator cache");
   s.integrator.rejected = r.get<int64_t>("the integrator cache");
+  s.integrator.predicted = r.get<uint8_t>("the integrator cache") != 0;
+  if (s.integrator.predicted && s.integrator.vectors.empty())
+    throw std::runtime_error("the integrator cache is marked predicted but holds no vector");
   s.flex.resize(r.count(8, "the flexible bodies"));
   for (FlexState& f : s.flex) {
     r.get_vector(f.broken_bits, "the broken bonds");

@@ -31,6 +31,9 @@ struct IntegratorCache {
   std::vector<double> scalars;
   std::vector<Eigen::VectorXd> vectors;
   long accepted = 0, rejected = 0;      // internal steps so far
+  // vectors[0] holds the bits it differs by (XOR) from the accelerations evaluated at the state
+  // (Simulation::save_state_for_file); restore_state evaluates again and puts it back whole
+  bool predicted = false;
 };
 
 // The constraint rows left out as dependent (rank monitoring moves them while running).

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -707,7 +709,58 @@ void Simulation::save_state(SimState& out) const {
   for (size_t c = 0; c < out.contacts.size(); ++c) s.model->contacts[c]->save_cache(out.contacts[c]);
 }
 
+namespace {
+
+// a ^= b, value by value on the bit patterns (its own inverse)
+void xor_bits(Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  for (Eigen::Index i = 0; i < a.size() && i < b.size(); ++i) {
+    uint64_t x, y;
+    std::memcpy(&x, &a[i], sizeof x);
+    std::memcpy(&y, &b[i], sizeof y);
+    x ^= y;
+    std::memcpy(&a[i], &x, sizeof x);
+  }
+}
+
+}  // namespace
+
+// The prediction of velocity Verlet's cache: the state put in place, one evaluation that closes
+// no step (no half-kick booked for a bond it breaks), and the state put in place again, so
+// nothing the evaluation changed stays.
+void Simulation::accelerations_at(const SimState& in, Eigen::VectorXd& out) {
+  Impl& s = *impl_;
+  restore_whole(in);
+  for (auto& flex : s.model->flex_bodies) flex->set_step_end(std::numeric_limits<double>::quiet_NaN(), 0.0);
+  Eigen::Vector3d power;
+  s.dynamics->derivative(in.time, s.state.q, s.state.qd, out, power);
+  restore_whole(in);
+}
+
+void Simulation::save_state_for_file(SimState& out) {
+  save_state(out);
+  IntegratorCache& cache = out.integrator;
+  // only a cache that holds an acceleration to predict (velocity Verlet after a step)
+  if (cache.name != "verlet" || cache.vectors.size() != 1 || cache.scalars.empty() || cache.scalars[0] == 0.0) return;
+  Eigen::VectorXd guess;
+  accelerations_at(out, guess);
+  xor_bits(cache.vectors[0], guess);
+  cache.predicted = true;
+}
+
 void Simulation::restore_state(const SimState& in) {
+  if (!in.integrator.predicted) {
+    restore_whole(in);
+    return;
+  }
+  SimState whole = in;
+  whole.integrator.predicted = false;
+  Eigen::VectorXd guess;
+  accelerations_at(whole, guess);
+  xor_bits(whole.integrator.vectors[0], guess);
+  restore_whole(whole);
+}
+
+void Simulation::restore_whole(const SimState& in) {
   Impl& s = *impl_;
   const SystemModel& m = *s.model;
   // a state of another model is refused before anything changes

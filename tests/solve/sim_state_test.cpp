@@ -1,11 +1,13 @@
 // Simulation::save_state / restore_state hold everything the next step reads: N steps, save,
 // M steps, restore, M steps again gives every coordinate, bond and account bit for bit, both in
 // the same Simulation (bonds broken since the save heal) and in a fresh one built from the scene
-// (what a restart from a checkpoint does). Scenes: a rigid mechanism through singular positions,
+// (what a restart from a checkpoint does), and from the compact state a checkpoint file holds.
+// Scenes: a rigid mechanism through singular positions,
 // a coupled plate that cracks, both plate models (state-based included), the glass plate (coarse
 // grid, shortened) at one and two threads, and two discs in particle contact.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -125,6 +127,77 @@ TEST(SimState, DiscsInParticleContactRepeatBitForBit) {
   ASSERT_FALSE(c.saved.contacts.empty());
   EXPECT_FALSE(c.saved.contacts[0].col.empty());
   expect_repeats(c);
+}
+
+// save_state_for_file: n steps, the state for a file, m steps (first); the same scene run n + m
+// steps without any save (plain); a fresh Simulation restored from the state for a file, m steps
+// (fresh).
+struct FileContinuation {
+  SimState saved, first, plain, fresh;
+};
+
+FileContinuation continue_from_file_state(const SceneDef& scene, long n, long m) {
+  FileContinuation c;
+  Simulation sim(scene);
+  for (long k = 0; k < n; ++k) sim.step();
+  sim.save_state_for_file(c.saved);
+  for (long k = 0; k < m; ++k) sim.step();
+  sim.save_state(c.first);
+  Simulation plain(scene);
+  for (long k = 0; k < n + m; ++k) plain.step();
+  plain.save_state(c.plain);
+  Simulation other(scene);
+  other.restore_state(c.saved);
+  for (long k = 0; k < m; ++k) other.step();
+  other.save_state(c.fresh);
+  return c;
+}
+
+// Share of the predicted cache's values whose bits equal the evaluation's exactly (stored as 0).
+double exact_share(const SimState& s) {
+  const Eigen::VectorXd& v = s.integrator.vectors.at(0);
+  long zero = 0;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    uint64_t bits;
+    std::memcpy(&bits, &v[i], sizeof bits);
+    zero += bits == 0;
+  }
+  return v.size() ? double(zero) / double(v.size()) : 0.0;
+}
+
+// The state for a file keeps velocity Verlet's end acceleration as its difference from an
+// evaluation at the state (most of it zero bits): the run that saved it goes on as if nothing
+// had been evaluated, and a fresh simulation restored from it repeats the run bit for bit. The
+// cracking plate (the evaluation sees bonds on the verge of breaking), the glass plate at one and
+// two threads, the plate with bond damping (the cache saw the half-step velocity, the evaluation
+// the whole-step one, so fewer values are exact: correct all the same) and discs in contact.
+TEST(SimState, StateForAFileRepeatsBitForBitAndLeavesTheRunAlone) {
+  const struct {
+    const char* name;
+    SceneDef scene;
+    long n, m;
+    double exact_at_least;  // share of the cache predicted exactly
+  } cases[] = {
+      {"cracking plate", load_scene(shipped("notched_plate.toml")), 1700, 150, 0.9},
+      {"glass plate, 1 thread",
+       load_scene(shipped("glass_branching.toml"), {"flex_body.plate.grid_spacing=5e-4", "flex_body.plate.horizon_ratio=3",
+                                                    "solver.dt=5e-8", "solver.threads=1"}),
+       150, 20, 0.9},
+      {"glass plate, 2 threads",
+       load_scene(shipped("glass_branching.toml"), {"flex_body.plate.grid_spacing=5e-4", "flex_body.plate.horizon_ratio=3",
+                                                    "solver.dt=5e-8", "solver.threads=2"}),
+       150, 20, 0.9},
+      {"damped plate", load_scene(shipped("notched_plate.toml"), {"flex_body.plate.bond_damping=2e3"}), 1200, 100, 0.0},
+      {"discs in contact", parse_scene(test::discs_scene(0.01, 1e-6, 1e-3), "discs.toml"), 260, 120, 0.5},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.name);
+    const FileContinuation r = continue_from_file_state(c.scene, c.n, c.m);
+    ASSERT_TRUE(r.saved.integrator.predicted);
+    EXPECT_GE(exact_share(r.saved), c.exact_at_least);
+    expect_same(r.first, r.plain, "the run that saved the state");
+    expect_same(r.first, r.fresh, "restored from the state for a file");
+  }
 }
 
 TEST(SimState, StateOfAnotherModelIsRefused) {

@@ -12,7 +12,7 @@ bash scripts/install-deps.sh
 jobs="$(nproc)"
 
 # only what those labels run is built: the program and their test programs
-asan_labels=(core scene mbs pd coupling contact solve cli output)
+asan_labels=(core scene mbs pd coupling contact solve cli output io)
 cmake --preset asan -DPERIFLEX_GUI=OFF -DPERIFLEX_HEADLESS=OFF >/dev/null
 cmake --build --preset asan -j"$jobs" --target periflex "${asan_labels[@]/#/test_}"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \

@@ -12,7 +12,7 @@
 
 #include "core/error.h"
 #include "output/checkpoint_file.h"
-#include "output/state_replay.h"
+#include "io/state_replay.h"
 
 namespace periflex {
 

@@ -1,6 +1,6 @@
 // `periflex play DIR`: the window on a checkpoint folder (or a run's VTK series) instead of a
 // running scene. The simulation thread keeps its place but steps nothing: its model is a replay
-// (output/state_replay.h) whose "step" puts the next state in place, so Right, the
+// (io/state_replay.h) whose "step" puts the next state in place, so Right, the
 // step button and a script's `step` move one checkpoint on, Space plays them through at the
 // window's speed, Backspace goes back to the first. Left and the timeline slider ask for a
 // state by index (the request is taken at the thread's next step). Drawing, colour fields,

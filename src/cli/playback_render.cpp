@@ -11,7 +11,7 @@
 #include "core/error.h"
 #include "output/atomic_file.h"
 #include "output/checkpoint_file.h"
-#include "output/state_replay.h"
+#include "io/state_replay.h"
 #include "output/series_row.h"
 #include "scene/toml_reader.h"
 

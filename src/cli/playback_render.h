@@ -1,5 +1,5 @@
 // `periflex run DIR --render ...` with DIR a checkpoint folder or a run's VTK series
-// (output/state_replay.h): the states drawn in time order (a checkpoint folder's scene start
+// (io/state_replay.h): the states drawn in time order (a checkpoint folder's scene start
 // first), one frame each, through the same Snapshot and recorder as a live run's frames. Nothing
 // is simulated.
 #pragma once

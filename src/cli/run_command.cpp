@@ -26,9 +26,9 @@
 #include "output/checkpoint_file.h"
 #include "output/run_record.h"
 #include "output/series_row.h"
-#include "output/series_writer.h"
-#include "output/summary_writer.h"
-#include "output/vtk_series.h"
+#include "io/series_writer.h"
+#include "io/summary_writer.h"
+#include "io/vtk_series.h"
 #include "scene/toml_reader.h"
 #include "solve/simulation.h"
 

@@ -1,4 +1,4 @@
-#include "output/vtk_reader.h"
+#include "io/vtk_reader.h"
 
 #include <cstdint>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "output/vtk_replay.h"
+#include "io/vtk_replay.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "output/checkpoint_file.h"
-#include "output/vtk_reader.h"
+#include "io/vtk_reader.h"
 #include "scene/scene_loader.h"
 
 namespace periflex {

@@ -1,5 +1,5 @@
 // The model of a checkpoint folder's scene, and its states shown one at a time.
-#include "output/checkpoint_replay.h"
+#include "io/checkpoint_replay.h"
 
 #include <cmath>
 #include <fstream>

@@ -1,4 +1,4 @@
-#include "output/vtk_writer.h"
+#include "io/vtk_writer.h"
 
 #include <algorithm>
 #include <bit>

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "output/checkpoint_folder.h"
-#include "output/state_replay.h"
+#include "io/state_replay.h"
 
 namespace periflex {
 

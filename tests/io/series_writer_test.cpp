@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "output/series_writer.h"
+#include "io/series_writer.h"
 
 namespace periflex {
 namespace {

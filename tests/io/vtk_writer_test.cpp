@@ -1,6 +1,6 @@
-// The VTK writer (src/output/vtk_writer): the structure of the .vtu and .vtp documents and the
+// The VTK writer (src/io/vtk_writer): the structure of the .vtu and .vtp documents and the
 // values in their binary appended block, read back as a VTK reader reads them.
-#include "output/vtk_writer.h"
+#include "io/vtk_writer.h"
 
 #include <unistd.h>
 
@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "output/vtk_series.h"
+#include "io/vtk_series.h"
 
 namespace periflex {
 namespace {

@@ -1,6 +1,6 @@
 // States of a finished run shown again without simulating: a checkpoint folder
-// (output/checkpoint_replay.h: every state whole) or the VTK series the run wrote
-// (output/vtk_replay.h: positions, velocities, damage and strain). Both build the model of the
+// (io/checkpoint_replay.h: every state whole) or the VTK series the run wrote
+// (io/vtk_replay.h: positions, velocities, damage and strain). Both build the model of the
 // run's scene once and fill the same Snapshot a live run draws, so playback in the window and
 // `run DIR --render` draw through one path.
 //

@@ -1,4 +1,4 @@
-// Reading back the VTK files periflex writes (output/vtk_writer.h): the named arrays of one .vtu
+// Reading back the VTK files periflex writes (io/vtk_writer.h): the named arrays of one .vtu
 // or .vtp file, from the raw appended block (UInt64 sizes, little-endian) or as ASCII text, and
 // the .pvd collection of a series. Only what the writer produces is understood; any other file
 // is refused by name, so a folder of foreign VTK files cannot be mistaken for a run's.

@@ -1,10 +1,10 @@
-#include "output/state_replay.h"
+#include "io/state_replay.h"
 
 #include <cmath>
 #include <filesystem>
 
-#include "output/checkpoint_replay.h"
-#include "output/vtk_replay.h"
+#include "io/checkpoint_replay.h"
+#include "io/vtk_replay.h"
 
 namespace periflex {
 

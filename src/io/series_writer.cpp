@@ -1,4 +1,4 @@
-#include "output/series_writer.h"
+#include "io/series_writer.h"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-// Replaying the VTK series a run wrote (`run --vtk-every N`, output/vtk_series.h): the model of
+// Replaying the VTK series a run wrote (`run --vtk-every N`, io/vtk_series.h): the model of
 // the run's scene (named by the summary.json beside the series' folder) built once, and each
 // snapshot of the series put in place as a state: the rigid bodies' poses from the .vtp files,
 // the particles' positions and velocities from the .vtu files, then the snapshot filled from
@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "output/state_replay.h"
+#include "io/state_replay.h"
 
 namespace periflex {
 

@@ -1,4 +1,4 @@
-#include "output/summary_writer.h"
+#include "io/summary_writer.h"
 
 #include <cmath>
 #include <nlohmann/json.hpp>

@@ -1,8 +1,8 @@
-// Reading back the VTK files periflex writes (src/output/vtk_reader): every array of a written
+// Reading back the VTK files periflex writes (src/io/vtk_reader): every array of a written
 // .vtu and .vtp file comes back with every digit, TIME and STEP included; a collection lists its
 // data sets; a file cut short, a foreign file and a collection pointing outside its folder are
 // refused naming the file.
-#include "output/vtk_reader.h"
+#include "io/vtk_reader.h"
 
 #include <unistd.h>
 
@@ -15,8 +15,8 @@
 #include <string>
 
 #include "output/checkpoint_file.h"
-#include "output/vtk_series.h"
-#include "output/vtk_writer.h"
+#include "io/vtk_series.h"
+#include "io/vtk_writer.h"
 
 namespace periflex {
 namespace {

@@ -1,10 +1,10 @@
-#include "output/vtk_series.h"
+#include "io/vtk_series.h"
 
 #include <cstdio>
 #include <sstream>
 
 #include "output/atomic_file.h"
-#include "output/vtk_writer.h"
+#include "io/vtk_writer.h"
 
 namespace periflex {
 

@@ -26,7 +26,10 @@ constexpr double kViewHeight = 0.12, kMetresPerPixel = kViewHeight / kHeight;
 constexpr const char* kTime = "3e-4";
 
 RgbaImage screenshot(const std::string& deform) {
-  const auto out = fresh_directory("deform_" + deform);
+  // a folder of the test's own: ctest runs the tests of this file at the same time, and two
+  // taking the same factor would empty each other's folder
+  const std::string test = ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const auto out = fresh_directory("deform_" + deform + "_" + test);
   const auto shot = out / "shot.png";
   const auto r = run_periflex("run " + scene("notched_plate.toml") + " --until " + kTime + " --snapshot-at " +
                               kTime + " --screenshot " + shot.string() + " --camera 0,0," +

@@ -83,6 +83,9 @@ class GuiApp {
   void panel_plots();
   // the plot window (gui_plot.cpp) and its PNG, read from the frame just drawn
   void plot_window(int fb_width, int fb_height);
+  // The plot window's series against its x column, the cursor at `cursor_time`; the x range is
+  // the caller's (the window's zoom, or a recording's rows)
+  PlotView plot_view(double cursor_time) const;
   void capture_plot(int fb_width, int fb_height);
   void panel_export();
   void panel_log();

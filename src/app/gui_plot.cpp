@@ -41,6 +41,15 @@ bool column_combo(const char* label, const char* id, std::string& chosen, const 
 
 }  // namespace
 
+PlotView GuiApp::plot_view(double cursor_time) const {
+  PlotView view;
+  view.x_column = plot_x_;
+  view.y_columns = {plot_y_};
+  view.y_columns.insert(view.y_columns.end(), plot_more_.begin(), plot_more_.end());
+  view.cursor_time = cursor_time;
+  return view;
+}
+
 void GuiApp::plot_window(int fb_width, int fb_height) {
   if (!show_plot_) return;
   const float scale = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
@@ -80,11 +89,7 @@ void GuiApp::plot_window(int fb_width, int fb_height) {
       break;
     }
   }
-  PlotView view;
-  view.x_column = plot_x_;
-  view.y_columns = {plot_y_};
-  view.y_columns.insert(view.y_columns.end(), plot_more_.begin(), plot_more_.end());
-  view.cursor_time = status_.time;
+  PlotView view = plot_view(status_.time);
   double data_lo = 0.0, data_hi = 1.0;
   if (history_.index_of(plot_x_) < 0 || history_.index_of(plot_y_) < 0 || history_.size() == 0 ||
       !plot_column_range(history_, plot_x_, data_lo, data_hi)) {

@@ -77,13 +77,10 @@ RgbaImage GuiApp::draw_picture(const Snapshot& frame, const Camera& camera, unsi
   const bool plotted = show_plot_ && rows.size() > 0;
   if (plotted) {
     plot.history = &rows;
-    plot.view.x_column = plot_x_;
-    plot.view.y_columns = {plot_y_};
-    plot.view.y_columns.insert(plot.view.y_columns.end(), plot_more_.begin(), plot_more_.end());
+    plot.view = plot_view(frame.time);
     plot.view.x_lo = plot_x_lo_;
     plot.view.x_hi = plot_x_hi_;
     if (!plot_zoomed_) plot_column_range(rows, plot_x_, plot.view.x_lo, plot.view.x_hi);
-    plot.view.cursor_time = frame.time;
   }
   // draw off-screen with the overlay, read back (rows bottom-up in GL)
   glBindFramebuffer(GL_FRAMEBUFFER, fbo);

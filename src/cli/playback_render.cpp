@@ -39,14 +39,12 @@ int render_checkpoint_folder(RunOptions options) {
   const size_t shot = options.snapshot_at ? replay->nearest(*options.snapshot_at) : replay->size();
 
   // the plot over the frames: the series rows of the states shown (a VTK series has none)
-  const Simulation& sim = replay->simulation();
   std::vector<std::string> plot_columns;
   if (!options.plot.empty()) {
     if (!replay->has_series_rows())
       throw InputError(flag_location("--plot"), "a VTK series holds no series.csv rows to plot; replay the run's "
                                                 "checkpoints, or plot while the run draws its frames");
-    plot_columns = plot_columns_checked(options, series_columns(sim.probe_columns(), sim.info().particles > 0,
-                                                                !replay->scene().contacts.empty()));
+    plot_columns = plot_columns_checked(options, series_columns(replay->simulation()));
   }
 
   Snapshot snapshot;

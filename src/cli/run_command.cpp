@@ -140,8 +140,7 @@ int run_command(const RunOptions& requested) {
   std::shared_ptr<const std::vector<std::string>> plot_row_columns;
   std::vector<std::string> plot_columns;
   if (!options.plot.empty()) {
-    plot_row_columns = std::make_shared<const std::vector<std::string>>(
-        series_columns(sim.probe_columns(), info.particles > 0, !scene.contacts.empty()));
+    plot_row_columns = std::make_shared<const std::vector<std::string>>(series_columns(sim));
     plot_columns = plot_columns_checked(options, *plot_row_columns);
   }
 
@@ -193,17 +192,13 @@ int run_command(const RunOptions& requested) {
   double solver_seconds = 0.0, solver_cpu = 0.0;
   double last_row_time = -1.0;
   auto write_row = [&]() {
-    const Sample sample = sim.sample();
-    if (!series->write(sample)) {
+    if (!series->write(sim.sample())) {
       throw NumericalError({"output sample", sim.step_count(), sim.time(), "a value to be written is not finite",
                             "lower solver.dt or enable constraint correction"});
     }
     // every row in the plot over the frames, not only the frames' own
-    if (!plot_columns.empty() && outputs.frames) {
-      std::vector<double> values;
-      series_values(sample, has_particles, !scene.contacts.empty(), values);
-      outputs.frames->add_plot_row(plot_row_columns, std::move(values), sim.step_count());
-    }
+    if (!plot_columns.empty() && outputs.frames)
+      outputs.frames->add_plot_row(plot_row_columns, series->last_row(), sim.step_count());
     last_row_time = sim.time();
   };
   SimState saved;  // kept between checkpoints: no allocation per file

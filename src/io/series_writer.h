@@ -23,6 +23,8 @@ class SeriesWriter {
   // Appends a row. Returns false (and writes nothing) if any value is not finite.
   bool write(const Sample& sample);
   long rows() const { return rows_; }
+  // The values of the row written last, in the order of columns().
+  const std::vector<double>& last_row() const { return values_; }
   const std::vector<std::string>& columns() const { return columns_; }
 
  private:

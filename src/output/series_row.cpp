@@ -34,12 +34,14 @@ void series_values(const Sample& s, bool with_damage, bool with_contact, std::ve
   out.insert(out.end(), s.probe_values.begin(), s.probe_values.end());
 }
 
+std::vector<std::string> series_columns(const Simulation& sim) {
+  return series_columns(sim.probe_columns(), sim.info().particles > 0, !sim.scene().contacts.empty());
+}
+
 void fill_series_row(const Simulation& sim, std::shared_ptr<const std::vector<std::string>>& columns, Snapshot& out) {
-  const bool damage = sim.info().particles > 0, contact = !sim.scene().contacts.empty();
-  if (!columns)
-    columns = std::make_shared<const std::vector<std::string>>(series_columns(sim.probe_columns(), damage, contact));
+  if (!columns) columns = std::make_shared<const std::vector<std::string>>(series_columns(sim));
   out.series_columns = columns;
-  series_values(sim.sample(), damage, contact, out.series);
+  series_values(sim.sample(), sim.info().particles > 0, !sim.scene().contacts.empty(), out.series);
 }
 
 std::string series_unit(const std::string& column) {

@@ -16,6 +16,10 @@ namespace periflex {
 std::vector<std::string> series_columns(const std::vector<std::string>& probe_columns, bool with_damage,
                                         bool with_contact);
 
+// The columns of a run of `sim`'s scene (its probes, damage columns with particles, contact
+// columns with [[contact]]).
+std::vector<std::string> series_columns(const Simulation& sim);
+
 // The values of `sample` in the order of series_columns (out is replaced).
 void series_values(const Sample& sample, bool with_damage, bool with_contact, std::vector<double>& out);
 

@@ -724,16 +724,15 @@ void xor_bits(Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 
 }  // namespace
 
-// The prediction of velocity Verlet's cache: the state put in place, one evaluation that closes
-// no step (no half-kick booked for a bond it breaks), and the state put in place again, so
-// nothing the evaluation changed stays.
+// The prediction of velocity Verlet's cache: the state put in place and one evaluation that
+// closes no step (no half-kick booked for a bond it breaks). What the evaluation changed stays:
+// the callers put a state in place after it.
 void Simulation::accelerations_at(const SimState& in, Eigen::VectorXd& out) {
   Impl& s = *impl_;
   restore_whole(in);
   for (auto& flex : s.model->flex_bodies) flex->set_step_end(std::numeric_limits<double>::quiet_NaN(), 0.0);
   Eigen::Vector3d power;
   s.dynamics->derivative(in.time, s.state.q, s.state.qd, out, power);
-  restore_whole(in);
 }
 
 void Simulation::save_state_for_file(SimState& out) {
@@ -743,6 +742,7 @@ void Simulation::save_state_for_file(SimState& out) {
   if (cache.name != "verlet" || cache.vectors.size() != 1 || cache.scalars.empty() || cache.scalars[0] == 0.0) return;
   Eigen::VectorXd guess;
   accelerations_at(out, guess);
+  restore_whole(out);  // the run goes on from the state saved, whatever the evaluation changed
   xor_bits(cache.vectors[0], guess);
   cache.predicted = true;
 }

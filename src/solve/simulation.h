@@ -143,7 +143,8 @@ class Simulation {
  private:
   // restore_state of a state whose cache is whole (not predicted)
   void restore_whole(const SimState& in);
-  // the accelerations evaluated at `in`, leaving the state `in` in place (save_state_for_file)
+  // the accelerations evaluated at `in` (save_state_for_file); the caller puts a state in place
+  // after it
   void accelerations_at(const SimState& in, Eigen::VectorXd& out);
   std::unique_ptr<Impl> impl_;
 };

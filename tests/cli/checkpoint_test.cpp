@@ -37,13 +37,7 @@ std::vector<std::string> lines_of(const fs::path& file) {
 }
 
 // The checkpoint files of a folder, in order.
-std::vector<fs::path> checkpoints_in(const fs::path& dir) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".pfstate") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
+std::vector<fs::path> checkpoints_in(const fs::path& dir) { return testing::files_with_extension(dir, ".pfstate"); }
 
 double row_time(const std::string& row) { return std::stod(row.substr(0, row.find(','))); }
 

@@ -19,18 +19,11 @@ namespace periflex {
 namespace {
 
 namespace fs = std::filesystem;
+using testing::files_with_extension;
 using testing::fresh_directory;
 using testing::read_text;
 using testing::run_child;
 using testing::scene;
-
-std::vector<fs::path> files_in(const fs::path& dir, const std::string& extension) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == extension) files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
-}
 
 std::string bytes_of(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -59,8 +52,8 @@ TEST(PlaybackRender, ReplayDrawsTheFramesOfTheLiveRunAtTheSameTimes) {
   EXPECT_NE(replayed.output.find("5 states from t = 0 to 0.000548 s"), std::string::npos) << replayed.output;
 
   // frame k of both is the state at t = k T (the start, then the four checkpoints)
-  const auto live = files_in(dir / "live_frames", ".png");
-  const auto replay = files_in(dir / "replay_frames", ".png");
+  const auto live = files_with_extension(dir / "live_frames", ".png");
+  const auto replay = files_with_extension(dir / "replay_frames", ".png");
   ASSERT_EQ(live.size(), 5u);
   ASSERT_EQ(replay.size(), live.size());
   for (size_t k = 0; k < live.size(); ++k) {
@@ -100,8 +93,8 @@ TEST(PlaybackRender, VtkSeriesReplayDrawsTheFramesOfTheLiveRun) {
                                      (dir / "replay").string()},
                                     60);
     ASSERT_EQ(replayed.exit_code, 0) << replayed.output;
-    const auto live_frames = files_in(dir / "live_frames", ".png");
-    const auto replay_frames = files_in(dir / "replay_frames", ".png");
+    const auto live_frames = files_with_extension(dir / "live_frames", ".png");
+    const auto replay_frames = files_with_extension(dir / "replay_frames", ".png");
     ASSERT_EQ(live_frames.size(), c.frames) << c.scene;
     ASSERT_EQ(replay_frames.size(), c.frames) << c.scene;
     for (size_t k = 0; k < c.frames; ++k)
@@ -168,7 +161,7 @@ TEST(PlaybackRender, FoldersThatCannotBeReplayedAreRefusedNamingTheFile) {
   ASSERT_EQ(other.exit_code, 0) << other.output;
   const fs::path mixed = dir / "mixed";
   fs::copy(folder, mixed);
-  const fs::path stranger = files_in(dir / "pendulum" / "checkpoints", ".pfstate").front();
+  const fs::path stranger = files_with_extension(dir / "pendulum" / "checkpoints", ".pfstate").front();
   fs::copy_file(stranger, mixed / "checkpoint_000009_t0.5.pfstate");
   auto r = replay(mixed);
   EXPECT_EQ(r.exit_code, 2) << r.output;
@@ -195,7 +188,7 @@ TEST(PlaybackRender, FoldersThatCannotBeReplayedAreRefusedNamingTheFile) {
   // without the off-screen renderer refuses --render before any checkpoint is read
   const fs::path damaged = dir / "damaged";
   fs::copy(folder, damaged);
-  const fs::path victim = files_in(damaged, ".pfstate")[1];
+  const fs::path victim = files_with_extension(damaged, ".pfstate")[1];
   std::string bytes = bytes_of(victim);
   bytes[bytes.size() / 2] ^= 0x5a;
   std::ofstream(victim, std::ios::binary) << bytes;

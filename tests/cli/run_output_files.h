@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -76,6 +77,17 @@ inline Series read_series(const std::filesystem::path& path) {
 inline nlohmann::json read_summary(const std::filesystem::path& path) {
   std::ifstream in(path);
   return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+}
+
+// The files of a folder with that extension (".png"), sorted by name; none for a missing folder.
+inline std::vector<std::filesystem::path> files_with_extension(const std::filesystem::path& dir,
+                                                               const std::string& extension) {
+  std::vector<std::filesystem::path> files;
+  if (!std::filesystem::is_directory(dir)) return files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.path().extension() == extension) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
 }
 
 inline long count_files(const std::filesystem::path& dir, const std::string& extension) {

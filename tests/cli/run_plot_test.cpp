@@ -13,6 +13,7 @@
 
 #include "child_run.h"
 #include "io/image.h"
+#include "run_output_files.h"
 #include "run_program.h"
 
 namespace periflex::testing {
@@ -36,14 +37,6 @@ long box_pixels_near(const RgbaImage& image, int r, int g, int b) {
     }
   }
   return n;
-}
-
-std::vector<fs::path> pngs_in(const fs::path& dir) {
-  std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".png") files.push_back(entry.path());
-  std::sort(files.begin(), files.end());
-  return files;
 }
 
 // One screenshot at 0.4 ms of the cracking plate: its plot of the driver's work is a line
@@ -79,8 +72,8 @@ TEST(RunPlot, ReplayedPlotStaysInItsBox) {
   };
   replay_into("plotted", {"--plot", "driver_work+fracture"});
   replay_into("plain", {});
-  const auto plotted = pngs_in(dir / "plotted");
-  const auto plain = pngs_in(dir / "plain");
+  const auto plotted = files_with_extension(dir / "plotted", ".png");
+  const auto plain = files_with_extension(dir / "plain", ".png");
   ASSERT_EQ(plotted.size(), 5u);
   ASSERT_EQ(plain.size(), 5u);
 

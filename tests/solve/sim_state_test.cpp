@@ -49,6 +49,22 @@ struct Continuation {
   SimState saved, first, again, fresh;
 };
 
+// m steps of `sim`, then its state
+SimState after_steps(Simulation& sim, long m) {
+  for (long k = 0; k < m; ++k) sim.step();
+  SimState s;
+  sim.save_state(s);
+  return s;
+}
+
+// a fresh Simulation of `scene` restored from `saved` (what a restart from a checkpoint does),
+// m steps, then its state
+SimState restored_then_stepped(const SceneDef& scene, const SimState& saved, long m) {
+  Simulation other(scene);
+  other.restore_state(saved);
+  return after_steps(other, m);
+}
+
 // n steps, save, m steps (first), restore, m steps (again); a fresh Simulation restored from the
 // save, m steps (fresh).
 Continuation continue_twice(const SceneDef& scene, long n, long m) {
@@ -56,15 +72,10 @@ Continuation continue_twice(const SceneDef& scene, long n, long m) {
   Simulation sim(scene);
   for (long k = 0; k < n; ++k) sim.step();
   sim.save_state(c.saved);
-  for (long k = 0; k < m; ++k) sim.step();
-  sim.save_state(c.first);
+  c.first = after_steps(sim, m);
   sim.restore_state(c.saved);
-  for (long k = 0; k < m; ++k) sim.step();
-  sim.save_state(c.again);
-  Simulation other(scene);
-  other.restore_state(c.saved);
-  for (long k = 0; k < m; ++k) other.step();
-  other.save_state(c.fresh);
+  c.again = after_steps(sim, m);
+  c.fresh = restored_then_stepped(scene, c.saved, m);
   return c;
 }
 
@@ -141,15 +152,10 @@ FileContinuation continue_from_file_state(const SceneDef& scene, long n, long m)
   Simulation sim(scene);
   for (long k = 0; k < n; ++k) sim.step();
   sim.save_state_for_file(c.saved);
-  for (long k = 0; k < m; ++k) sim.step();
-  sim.save_state(c.first);
+  c.first = after_steps(sim, m);
   Simulation plain(scene);
-  for (long k = 0; k < n + m; ++k) plain.step();
-  plain.save_state(c.plain);
-  Simulation other(scene);
-  other.restore_state(c.saved);
-  for (long k = 0; k < m; ++k) other.step();
-  other.save_state(c.fresh);
+  c.plain = after_steps(plain, n + m);
+  c.fresh = restored_then_stepped(scene, c.saved, m);
   return c;
 }
 

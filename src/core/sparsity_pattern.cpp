@@ -63,10 +63,8 @@ std::vector<std::vector<int>> colour_columns(const SparsityPattern& pattern) {
   for (int j = 0; j < n; ++j) {
     for (int k = start[j]; k < start[j + 1]; ++k) {
       const int i = rows[k];
-      for (int m = row_start[i]; m < row_start[i + 1]; ++m) {
-        const int c = colour[row_cols[m]];
-        if (c >= 0) taken_by[c] = j;
-      }
+      // the row's columns are in ascending order: from j on, none is coloured yet
+      for (int m = row_start[i]; m < row_start[i + 1] && row_cols[m] < j; ++m) taken_by[colour[row_cols[m]]] = j;
     }
     int c = 0;
     while (c < static_cast<int>(colours.size()) && taken_by[c] == j) ++c;

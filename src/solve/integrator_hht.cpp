@@ -3,6 +3,7 @@
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -45,7 +46,7 @@ class Hht final : public Integrator {
       system.derivative(t, s.q, s.qd, f0_, power0_);
     }
     edited_ = false;
-    if (h != tangent_h_) tangent_valid_ = false;
+    matrix_ = &matrix_for(h);
 
     bool retried = false;
     for (;;) {
@@ -54,7 +55,7 @@ class Hht final : public Integrator {
       if (retried) fail(t, h);
       retried = true;
       pattern_valid_ = false;
-      tangent_valid_ = false;
+      matrix_->valid = false;
     }
     s.work += 0.5 * h * (power0_ + power1_);
     s.q = q1_;
@@ -87,7 +88,7 @@ class Hht final : public Integrator {
     v_end_ = in.vectors[1];
     a0_ = in.vectors[2];
     f0_ = in.vectors[3];
-    tangent_valid_ = false;
+    for (IterationMatrix& m : matrices_) m.valid = false;
   }
 
  private:
@@ -122,12 +123,12 @@ class Hht final : public Integrator {
       last_residual_ = residual_.lpNorm<Eigen::Infinity>();
       if (!std::isfinite(last_residual_)) return false;
       // a slowly converging or diverging old tangent is replaced at the current iterate
-      if (!tangent_valid_ || (!fresh_tangent && iteration > 0 && last_increment_ > 0.25 * previous)) {
+      if (!matrix_->valid || (!fresh_tangent && iteration > 0 && last_increment_ > 0.25 * previous)) {
         if (!build_tangent(system, t, h)) return false;
         fresh_tangent = true;
       }
-      const Eigen::VectorXd delta = lu_.solve(-residual_);
-      if (lu_.info() != Eigen::Success || !delta.allFinite()) return false;
+      const Eigen::VectorXd delta = matrix_->lu.solve(-residual_);
+      if (matrix_->lu.info() != Eigen::Success || !delta.allFinite()) return false;
       a1_ += delta;
       previous = last_increment_;
       last_increment_ = beta_ * h * h * delta.lpNorm<Eigen::Infinity>();
@@ -139,7 +140,7 @@ class Hht final : public Integrator {
         update_state(s, h);
         system.derivative(t + h, q1_, v1_, f1_, power1_);
         // converged in a few iterations: the tangent is good for the next step too
-        tangent_valid_ = iteration < 4;
+        matrix_->valid = iteration < 4;
         return f1_.allFinite();
       }
     }
@@ -186,14 +187,14 @@ class Hht final : public Integrator {
     for (Eigen::Index i = 0; i < n; ++i) triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
     Eigen::SparseMatrix<double> matrix(n, n);
     matrix.setFromTriplets(triplets.begin(), triplets.end());
-    if (!analysed_) {
-      lu_.analyzePattern(matrix);
-      analysed_ = true;
+    IterationMatrix& m = *matrix_;
+    if (!m.analysed) {
+      m.lu.analyzePattern(matrix);
+      m.analysed = true;
     }
-    lu_.factorize(matrix);
-    if (lu_.info() != Eigen::Success) return false;
-    tangent_valid_ = true;
-    tangent_h_ = h;
+    m.lu.factorize(matrix);
+    if (m.lu.info() != Eigen::Success) return false;
+    m.valid = true;
     ++tangents_;
     return true;
   }
@@ -224,7 +225,7 @@ class Hht final : public Integrator {
     std::swap(pattern_, pattern);
     colours_ = colour_columns(pattern_);
     pattern_valid_ = true;
-    analysed_ = false;
+    for (IterationMatrix& m : matrices_) m.analysed = m.valid = false;
   }
 
   [[noreturn]] void fail(double t, double h) const {
@@ -256,11 +257,38 @@ class Hht final : public Integrator {
   bool pattern_valid_ = false;
   SparsityPattern pattern_, trial_pattern_;
   std::vector<std::vector<int>> colours_;
-  // the factorised iteration matrix
-  Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu_;
-  bool analysed_ = false, tangent_valid_ = false;
-  double tangent_h_ = 0.0;
+  // The factorised iteration matrices of the last two step sizes. A run that lands on its output
+  // times alternates between its dt and the shorter step that reaches the next output (dt =
+  // 7.5e-5 s, output every 2e-4 s: two full steps and one of 5e-5 s); with one matrix, every
+  // change of step size rebuilt it, at 88% of the steps of the flexible slider-crank.
+  struct IterationMatrix {
+    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+    double h = 0.0;
+    long last_used = -1;
+    bool analysed = false, valid = false;
+  };
+  std::array<IterationMatrix, 2> matrices_;
+  IterationMatrix* matrix_ = &matrices_[0];  // the current step's
   long tangents_ = 0;
+
+  // The matrix for step size h (the same to a billionth, as a step that lands on an output time
+  // is computed from the clock), or the one used longest ago, emptied for h.
+  IterationMatrix& matrix_for(double h) {
+    IterationMatrix* m = &matrices_[0];
+    for (IterationMatrix& candidate : matrices_) {
+      if (std::abs(candidate.h - h) <= 1e-9 * h) {
+        m = &candidate;
+        break;
+      }
+      if (candidate.last_used < m->last_used) m = &candidate;
+    }
+    if (!(std::abs(m->h - h) <= 1e-9 * h)) {
+      m->h = h;
+      m->valid = false;
+    }
+    m->last_used = accepted_;
+    return *m;
+  }
 };
 
 }  // namespace

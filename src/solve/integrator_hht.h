@@ -15,7 +15,8 @@
 // are perturbed together (Curtis, Powell & Reid 1974), and S is factorised by sparse LU. For a
 // peridynamic body the colours are about twice the particles within two horizons, so a
 // tangent costs about a hundred force evaluations, not one per coordinate. The tangent is kept
-// from step to step while Newton converges quickly.
+// from step to step while Newton converges quickly, one for each of the last two step sizes (a
+// run that lands on its output times alternates its dt with a shorter step).
 //
 // Properties: second order; unconditionally stable for linear problems; numerical damping of
 // the highest frequencies grows as alpha goes from 0 (none: the trapezoidal rule) to -1/3

@@ -129,7 +129,7 @@ free coordinate, such as the driven slider-crank, it recovers the exact kinemati
 - HHT is second order like Verlet, with a larger error constant and a Newton solve per step: on
   non-stiff rigid problems it is the slowest way to an accuracy. It earns its place on stiff
   flexible bodies, at steps tens to hundreds of times above the explicit critical step
-  (tests/study/hht_stiff_bar_test.cpp), where the explicit schemes cannot run at all.
+  (tests/solve/hht_stiff_bar_test.cpp), where the explicit schemes cannot run at all.
 - Where implicit integration pays, measured: on the flexible slider-crank (steel rod, 400
   particles, critical step 7.7e-7 s) HHT does not win at 20-100 times the critical step.
   Over one revolution HHT at 7.5e-5 s (97x) is off by 1.9e-4 of the excursion, Verlet at the

@@ -131,22 +131,21 @@ free coordinate, such as the driven slider-crank, it recovers the exact kinemati
   flexible bodies, at steps tens to hundreds of times above the explicit critical step
   (tests/solve/hht_stiff_bar_test.cpp), where the explicit schemes cannot run at all.
 - Where implicit integration pays, measured: on the flexible slider-crank (steel rod, 400
-  particles, critical step 7.7e-7 s) HHT does not win at 20-100 times the critical step.
-  Over one revolution HHT at 7.5e-5 s (97x) is off by 1.9e-4 of the excursion, Verlet at the
-  scene's 5e-7 s by 5.8e-7 (Baumgarte) and 2.9e-8 (projection); the error is the rod's
-  mid-span vibration (first bending mode near 500 Hz, a 2 ms period), which HHT damps (energy
-  error 1 %), while on the slider alone HHT at 97x matches Verlet (4.5e-8 against 5.9e-8 m
-  over the first quarter turn). It is not faster either. CPU time for the first 0.03 s, one
-  thread (2-core EPYC, loaded; the study's wall times above include up to tenfold waiting):
-  Verlet 1.84 s (Baumgarte) and 3.83 s (projection) at 5e-7; HHT 2.94 s at 7.5e-5, 3.18 s at
-  5e-5, 5.78 s at 3e-5, 5.65 s at 2e-5, 7.95 s at 1e-5. An HHT step costs 2.6-6.5 ms, 85 to
-  210 Verlet steps: it rebuilds its tangent at 55-88 % of the steps, each time about 87 force
-  evaluations (one per colour) and a sparse LU factorisation. Profile at 5e-5 (perf, one
-  thread): bond forces 21 %, sparse LU 22 %, the sparsity pattern rebuilt and sorted at every
-  tangent 11 %, assembling the matrix 12 %. At equal accuracy, HHT would need about 3.3e-6 s
-  (order 1.88 from 4.6e-6 at 1e-5 s), some 100 s of CPU time against Verlet's 7.7 s: about 13
-  times slower. HHT pays where the probes do not follow the fast modes and the tangent lasts
-  many steps; an analytic bond tangent and a tangent kept over steps are what it lacks here.
+  particles, critical step 7.7e-7 s) over one revolution, against a converged Verlet run, HHT
+  at 7.5e-5 s (97 times the critical step) is off by 2e-4 of the excursion in 2.0 s and at
+  3e-5 s (39 times) by 3.7e-5 in 1.9 s, where Verlet at its stable step of 5e-7 s needs 6.9 s
+  (Baumgarte; 5.8e-7) or 14.4 s (projection; 2.9e-8): for any accuracy down to 2e-4 HHT gets
+  there 3.4-3.6 times faster (study below, quiet 2-core EPYC, one run at a time). Tighter, Verlet
+  wins: its stable step already gives 5.8e-7, and HHT levels off near 1.6e-6 (at 5e-6 and 4e-6 s,
+  5.3 and 7.0 s). The error HHT leaves is the rod's mid-span vibration (first bending mode near
+  500 Hz, a 2 ms period), which its large steps damp (energy error 1 % at 97x); on the slider
+  alone HHT at 97x matches Verlet (4.5e-8 against 5.9e-8 m over the first quarter turn). HHT
+  pays because its iteration matrix now lasts: a run lands on its output times (every 2e-4 s
+  here) by shortening the step before each, so the step size alternates (7.5e-5, 7.5e-5,
+  5e-5 s), and while HHT kept one matrix every change rebuilt it (88 % of the steps, each about
+  87 force evaluations and a sparse LU factorisation): the same run took 2.1-2.4 s of CPU time
+  for its first 0.03 s, now 0.55-0.67 s; 4.3-4.4 s at 2e-5 s, now 0.46-0.66 s. It keeps the
+  matrices of the last two step sizes (`tests/solve/integrator_hht_test.cpp`).
 - IFToMM A01 (20 s of the 2000 s benchmark, against its closed form from a file): every
   integrator converges at its order (symplectic Euler 1.07, Verlet 1.92, RK4 4 to 5, HHT 1.91);
   Dormand-Prince is the fastest to 1e-3 and to 1e-6. The energy plot shows what each scheme

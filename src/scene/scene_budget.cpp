@@ -168,7 +168,8 @@ void check_particles(const SceneDef& scene, SceneBudget& budget) {
     budget.bonds += count.neighbours / 2;
     const std::string& integrator = scene.solver.integrator;
     body_memory.push_back(particles * (kBytesPerParticle + integrator_bytes_per_particle(integrator)) +
-                          count.neighbours * (kBytesPerNeighbor + integrator_bytes_per_neighbor(integrator)));
+                          count.neighbours * (kBytesPerNeighbor + iteration_matrices(scene.solver) *
+                                                                      integrator_bytes_per_neighbor(integrator)));
     budget.memory += body_memory.back();
     if (!(budget.particles <= l.max_particles))
       refuse(flex_key(scene, flex, "grid_spacing"),
@@ -212,6 +213,12 @@ double integrator_bytes_per_particle(const std::string& integrator) {
   if (integrator == "rk4" || integrator == "hht" || integrator == "generalized_alpha") return 96.0;
   if (integrator == "dopri54") return 272.0;
   return 0.0;
+}
+
+int iteration_matrices(const SolverDef& solver) {
+  if (!(solver.output_interval > 0.0) || !(solver.dt > 0.0)) return 1;
+  const double steps = solver.output_interval / solver.dt;
+  return std::abs(steps - std::round(steps)) <= 1e-9 * steps ? 1 : 2;
 }
 
 double integrator_bytes_per_neighbor(const std::string& integrator) {

@@ -48,6 +48,10 @@ constexpr double kBytesPerNeighbor = 30.0;
 // symplectic ones); and the implicit integrators' tangent, per stored neighbour.
 double integrator_bytes_per_particle(const std::string& integrator);
 double integrator_bytes_per_neighbor(const std::string& integrator);
+// The iteration matrices an implicit integrator keeps (one per step size, see
+// solve/integrator_hht.h): two when the steps are cut at the output times (output_interval not
+// a whole number of dt), one otherwise.
+int iteration_matrices(const SolverDef& solver);
 
 // Cores of this machine (at least 1).
 int machine_cores();

@@ -46,7 +46,7 @@ class Hht final : public Integrator {
       system.derivative(t, s.q, s.qd, f0_, power0_);
     }
     edited_ = false;
-    matrix_ = &matrix_for(h);
+    current_ = matrix_for(h);
 
     bool retried = false;
     for (;;) {
@@ -55,7 +55,7 @@ class Hht final : public Integrator {
       if (retried) fail(t, h);
       retried = true;
       pattern_valid_ = false;
-      matrix_->valid = false;
+      matrices_[current_].valid = false;
     }
     s.work += 0.5 * h * (power0_ + power1_);
     s.q = q1_;
@@ -123,12 +123,13 @@ class Hht final : public Integrator {
       last_residual_ = residual_.lpNorm<Eigen::Infinity>();
       if (!std::isfinite(last_residual_)) return false;
       // a slowly converging or diverging old tangent is replaced at the current iterate
-      if (!matrix_->valid || (!fresh_tangent && iteration > 0 && last_increment_ > 0.25 * previous)) {
+      IterationMatrix& m = matrices_[current_];
+      if (!m.valid || (!fresh_tangent && iteration > 0 && last_increment_ > 0.25 * previous)) {
         if (!build_tangent(system, t, h)) return false;
         fresh_tangent = true;
       }
-      const Eigen::VectorXd delta = matrix_->lu.solve(-residual_);
-      if (matrix_->lu.info() != Eigen::Success || !delta.allFinite()) return false;
+      const Eigen::VectorXd delta = m.lu.solve(-residual_);
+      if (m.lu.info() != Eigen::Success || !delta.allFinite()) return false;
       a1_ += delta;
       previous = last_increment_;
       last_increment_ = beta_ * h * h * delta.lpNorm<Eigen::Infinity>();
@@ -140,7 +141,7 @@ class Hht final : public Integrator {
         update_state(s, h);
         system.derivative(t + h, q1_, v1_, f1_, power1_);
         // converged in a few iterations: the tangent is good for the next step too
-        matrix_->valid = iteration < 4;
+        m.valid = iteration < 4;
         return f1_.allFinite();
       }
     }
@@ -187,7 +188,7 @@ class Hht final : public Integrator {
     for (Eigen::Index i = 0; i < n; ++i) triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
     Eigen::SparseMatrix<double> matrix(n, n);
     matrix.setFromTriplets(triplets.begin(), triplets.end());
-    IterationMatrix& m = *matrix_;
+    IterationMatrix& m = matrices_[current_];
     if (!m.analysed) {
       m.lu.analyzePattern(matrix);
       m.analysed = true;
@@ -268,26 +269,22 @@ class Hht final : public Integrator {
     bool analysed = false, valid = false;
   };
   std::array<IterationMatrix, 2> matrices_;
-  IterationMatrix* matrix_ = &matrices_[0];  // the current step's
+  size_t current_ = 0;  // the current step's
   long tangents_ = 0;
 
   // The matrix for step size h (the same to a billionth, as a step that lands on an output time
   // is computed from the clock), or the one used longest ago, emptied for h.
-  IterationMatrix& matrix_for(double h) {
-    IterationMatrix* m = &matrices_[0];
-    for (IterationMatrix& candidate : matrices_) {
-      if (std::abs(candidate.h - h) <= 1e-9 * h) {
-        m = &candidate;
-        break;
-      }
-      if (candidate.last_used < m->last_used) m = &candidate;
+  size_t matrix_for(double h) {
+    const auto same = [h](const IterationMatrix& m) { return std::abs(m.h - h) <= 1e-9 * h; };
+    size_t k = 0;
+    while (k < matrices_.size() && !same(matrices_[k])) ++k;
+    if (k == matrices_.size()) {
+      k = matrices_[0].last_used <= matrices_[1].last_used ? 0 : 1;
+      matrices_[k].h = h;
+      matrices_[k].valid = false;
     }
-    if (!(std::abs(m->h - h) <= 1e-9 * h)) {
-      m->h = h;
-      m->valid = false;
-    }
-    m->last_used = accepted_;
-    return *m;
+    matrices_[k].last_used = accepted_;
+    return k;
   }
 };
 

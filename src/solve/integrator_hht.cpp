@@ -1,7 +1,6 @@
 #include "solve/integrator_hht.h"
 
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -11,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "solve/sparse_lu.h"
 
 namespace periflex {
 
@@ -129,7 +129,7 @@ class Hht final : public Integrator {
         fresh_tangent = true;
       }
       const Eigen::VectorXd delta = m.lu.solve(-residual_);
-      if (m.lu.info() != Eigen::Success || !delta.allFinite()) return false;
+      if (!delta.allFinite()) return false;
       a1_ += delta;
       previous = last_increment_;
       last_increment_ = beta_ * h * h * delta.lpNorm<Eigen::Infinity>();
@@ -190,11 +190,10 @@ class Hht final : public Integrator {
     matrix.setFromTriplets(triplets.begin(), triplets.end());
     IterationMatrix& m = matrices_[current_];
     if (!m.analysed) {
-      m.lu.analyzePattern(matrix);
+      m.lu.analyse(matrix);
       m.analysed = true;
     }
-    m.lu.factorize(matrix);
-    if (m.lu.info() != Eigen::Success) return false;
+    if (!m.lu.factorize(matrix)) return false;
     m.valid = true;
     ++tangents_;
     return true;
@@ -263,7 +262,7 @@ class Hht final : public Integrator {
   // 7.5e-5 s, output every 2e-4 s: two full steps and one of 5e-5 s); with one matrix, every
   // change of step size rebuilt it, at 88% of the steps of the flexible slider-crank.
   struct IterationMatrix {
-    Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>> lu;
+    SparseLu lu;
     double h = 0.0;
     long last_used = -1;
     bool analysed = false, valid = false;

@@ -163,9 +163,9 @@ class Hht final : public Integrator {
     const std::vector<int>& pattern_rows = pattern_.rows();
     const double root_eps = std::sqrt(std::numeric_limits<double>::epsilon());
     const double q_scale = std::max(q1_.lpNorm<Eigen::Infinity>(), 1e-6);
-    std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(pattern_rows.size() + n);
-    Eigen::VectorXd dq(n), dv(n), step_of(n);
+    // the values go straight into S, whose compressed columns are the pattern's (with the diagonal)
+    double* values = tangent_.valuePtr();
+    Eigen::VectorXd step_of(n);
     for (const std::vector<int>& columns : colours_) {
       // perturb every column of this colour at once: a = a1 + eps_j e_j
       q_trial_ = q1_;
@@ -181,13 +181,11 @@ class Hht final : public Integrator {
         for (int k = pattern_start[j]; k < pattern_start[j + 1]; ++k) {
           const int i = pattern_rows[k];
           const double g = (f_trial_[i] - f1_[i]) / step_of[j];
-          triplets.emplace_back(i, j, -(1.0 + alpha_) * g);
+          values[k] = (i == j ? 1.0 : 0.0) - (1.0 + alpha_) * g;
         }
       }
     }
-    for (Eigen::Index i = 0; i < n; ++i) triplets.emplace_back(static_cast<int>(i), static_cast<int>(i), 1.0);
-    Eigen::SparseMatrix<double> matrix(n, n);
-    matrix.setFromTriplets(triplets.begin(), triplets.end());
+    const Eigen::SparseMatrix<double>& matrix = tangent_;
     IterationMatrix& m = matrices_[current_];
     if (!m.analysed) {
       m.lu.analyse(matrix);
@@ -224,6 +222,11 @@ class Hht final : public Integrator {
   void use_pattern(SparsityPattern& pattern) {
     std::swap(pattern_, pattern);
     colours_ = colour_columns(pattern_);
+    const int n = pattern_.size();
+    tangent_.resize(n, n);
+    tangent_.resizeNonZeros(static_cast<Eigen::Index>(pattern_.nonzeros()));
+    std::copy(pattern_.start().begin(), pattern_.start().end(), tangent_.outerIndexPtr());
+    std::copy(pattern_.rows().begin(), pattern_.rows().end(), tangent_.innerIndexPtr());
     pattern_valid_ = true;
     for (IterationMatrix& m : matrices_) m.analysed = m.valid = false;
   }
@@ -257,6 +260,7 @@ class Hht final : public Integrator {
   bool pattern_valid_ = false;
   SparsityPattern pattern_, trial_pattern_;
   std::vector<std::vector<int>> colours_;
+  Eigen::SparseMatrix<double> tangent_;  // S, in the pattern's compressed columns
   // The factorised iteration matrices of the last two step sizes. A run that lands on its output
   // times alternates between its dt and the shorter step that reaches the next output (dt =
   // 7.5e-5 s, output every 2e-4 s: two full steps and one of 5e-5 s); with one matrix, every

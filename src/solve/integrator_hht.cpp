@@ -187,10 +187,7 @@ class Hht final : public Integrator {
     }
     const Eigen::SparseMatrix<double>& matrix = tangent_;
     IterationMatrix& m = matrices_[current_];
-    if (!m.analysed) {
-      m.lu.analyse(matrix);
-      m.analysed = true;
-    }
+    if (!m.lu.same_pattern(matrix)) m.lu.analyse(matrix);
     if (!m.lu.factorize(matrix)) return false;
     m.valid = true;
     ++tangents_;
@@ -228,7 +225,7 @@ class Hht final : public Integrator {
     std::copy(pattern_.start().begin(), pattern_.start().end(), tangent_.outerIndexPtr());
     std::copy(pattern_.rows().begin(), pattern_.rows().end(), tangent_.innerIndexPtr());
     pattern_valid_ = true;
-    for (IterationMatrix& m : matrices_) m.analysed = m.valid = false;
+    for (IterationMatrix& m : matrices_) m.valid = false;
   }
 
   [[noreturn]] void fail(double t, double h) const {
@@ -269,7 +266,7 @@ class Hht final : public Integrator {
     SparseLu lu;
     double h = 0.0;
     long last_used = -1;
-    bool analysed = false, valid = false;
+    bool valid = false;
   };
   std::array<IterationMatrix, 2> matrices_;
   size_t current_ = 0;  // the current step's

@@ -2,6 +2,8 @@
 // integrator perturbs by.
 #include <gtest/gtest.h>
 
+#include <random>
+#include <set>
 #include <vector>
 
 #include "core/sparsity_pattern.h"
@@ -52,6 +54,56 @@ TEST(SparsityPattern, ColoursShareNoRowAndMatchTheBandwidth) {
   size_t coloured = 0;
   for (const auto& columns : colours) coloured += columns.size();
   EXPECT_EQ(coloured, static_cast<size_t>(n));
+}
+
+// The column-by-column first fit, written plainly: column j takes the least colour no earlier
+// column sharing a row with it has.
+std::vector<std::vector<int>> first_fit(const SparsityPattern& p) {
+  const int n = p.size();
+  std::vector<std::set<int>> rows_of(n);
+  for (int j = 0; j < n; ++j) rows_of[j].insert(p.rows().begin() + p.start()[j], p.rows().begin() + p.start()[j + 1]);
+  std::vector<int> colour(n);
+  std::vector<std::vector<int>> colours;
+  for (int j = 0; j < n; ++j) {
+    std::set<int> met;
+    for (int k = 0; k < j; ++k)
+      for (int r : rows_of[j])
+        if (rows_of[k].count(r)) met.insert(colour[k]);
+    int c = 0;
+    while (met.count(c)) ++c;
+    colour[j] = c;
+    if (c == static_cast<int>(colours.size())) colours.emplace_back();
+    colours[c].push_back(j);
+  }
+  return colours;
+}
+
+// Particles on a line (x and y columns alike), a rigid body's three coordinates coupled to a
+// few of them, one-sided entries and a coordinate that meets only itself: the grouped colouring gives the colours
+// of the plain first fit.
+TEST(SparsityPattern, GroupedColouringIsTheColumnByColumnFirstFit) {
+  std::mt19937 random(7);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int particles = 40, n = 2 * particles + 3 + 1;
+    const int body = 2 * particles, empty = n - 1;
+    SparsityPattern p;
+    p.reset(n);
+    std::uniform_int_distribution<int> reach(1, 4), pick(0, particles - 1);
+    const int r = reach(random);
+    for (int a = 0; a < particles; ++a)
+      for (int b = std::max(0, a - r); b <= std::min(particles - 1, a + r); ++b)
+        p.add_block({2 * a, 2 * a + 1}, {2 * b, 2 * b + 1});
+    for (int k = 0; k < 3; ++k) {
+      const int a = pick(random);
+      p.add_block({body, body + 1, body + 2, 2 * a, 2 * a + 1}, {body, body + 1, body + 2, 2 * a, 2 * a + 1});
+    }
+    p.add(2 * pick(random), 2 * pick(random) + 1);  // one-sided
+    p.finish();
+    std::vector<std::vector<int>> expected = first_fit(p);
+    // the empty column has its diagonal only: it meets no other
+    ASSERT_EQ(p.start()[empty + 1] - p.start()[empty], 1);
+    EXPECT_EQ(colour_columns(p), expected) << "trial " << trial;
+  }
 }
 
 }  // namespace

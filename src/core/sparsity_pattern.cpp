@@ -43,10 +43,6 @@ void SparsityPattern::finish() {
   }
 }
 
-namespace {
-
-// Groups of consecutive lists (of a compressed layout) with the same entries: group_start[g] is
-// the first list of group g, group_start.back() the count. Empty lists stay groups of one.
 std::vector<int> identical_runs(const std::vector<int>& start, const std::vector<int>& entries) {
   const int n = static_cast<int>(start.size()) - 1;
   std::vector<int> group_start;
@@ -60,15 +56,12 @@ std::vector<int> identical_runs(const std::vector<int>& start, const std::vector
   return group_start;
 }
 
-// For each list, its group.
-std::vector<int> group_of(const std::vector<int>& group_start) {
-  std::vector<int> group(static_cast<size_t>(group_start.back()));
+std::vector<int> run_of(const std::vector<int>& group_start) {
+  std::vector<int> run(static_cast<size_t>(group_start.back()));
   for (size_t g = 0; g + 1 < group_start.size(); ++g)
-    std::fill(group.begin() + group_start[g], group.begin() + group_start[g + 1], static_cast<int>(g));
-  return group;
+    std::fill(run.begin() + group_start[g], run.begin() + group_start[g + 1], static_cast<int>(g));
+  return run;
 }
-
-}  // namespace
 
 // Columns with the same rows (a particle's x and y) and rows met by the same columns are taken
 // as one: the colours are those of the column-by-column first fit (a column of a group meets
@@ -89,8 +82,8 @@ std::vector<std::vector<int>> colour_columns(const SparsityPattern& pattern) {
 
   const std::vector<int> column_group_start = identical_runs(start, rows);
   const std::vector<int> row_group_start = identical_runs(row_start, row_cols);
-  const std::vector<int> column_group = group_of(column_group_start);
-  const std::vector<int> row_group = group_of(row_group_start);
+  const std::vector<int> column_group = run_of(column_group_start);
+  const std::vector<int> row_group = run_of(row_group_start);
   // each row group's column groups and each column group's row groups, ascending and unique
   const auto quotient = [](const std::vector<int>& group_start, const std::vector<int>& list_start,
                            const std::vector<int>& entries, const std::vector<int>& entry_group,

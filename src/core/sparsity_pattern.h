@@ -43,6 +43,13 @@ class SparsityPattern {
   std::vector<int> start_, rows_;
 };
 
+// Runs of consecutive lists of a compressed layout (list j: entries[start[j] .. start[j + 1]))
+// with the same entries, such as a particle's x and y columns: group_start[g] is the first list
+// of run g, group_start.back() the count of lists. Empty lists stay runs of one.
+std::vector<int> identical_runs(const std::vector<int>& start, const std::vector<int>& entries);
+// For each list, its run.
+std::vector<int> run_of(const std::vector<int>& group_start);
+
 // Greedy colouring of the columns so that no two columns of one colour share a row (Curtis,
 // Powell & Reid 1974): column j takes the first colour none of whose columns meets one of its
 // rows. Returns the columns of each colour, in increasing order. Cost: the sum over columns of

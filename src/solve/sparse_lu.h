@@ -10,14 +10,13 @@
 // supernodal LU larger dense blocks. (Eigen's SparseLU with AMDOrdering applies that order
 // inverted and fills 6x more, 3.7 s on the same matrix; hence the permutation is done here.)
 //
-// Structurally unsymmetric parts can change that: on the flexible slider-crank's matrix (812
-// unknowns; particles eliminated onto rigid bodies couple whole attachment regions through their
-// columns) COLAMD's column order with row pivoting keeps 61,000 factor entries against 108,000
-// and factorises in 1.5 ms against 2.5. A matrix of up to kTrialEntries entries, whose
-// factorisation costs milliseconds, is therefore factorised both ways the first time, and the
-// column order kept when its factors have fewer than kColumnOrderRatio times the entries. (On
-// plain particle grids the column order keeps 0.9-1.07 times the entries and is 1.4-4x slower:
-// fewer entries alone do not make it faster.)
+// The unknowns whose columns of A + A^T are the same (a particle's x and y; on the flexible
+// slider-crank also runs of up to ten coordinates of particles eliminated onto one body, which
+// reach the same region) are ordered as one. That
+// also fills less where whole regions are coupled: on the flexible slider-crank's matrix (812
+// unknowns) 58,000 factor entries, against 108,000 when ordered one by one and 60,000 in
+// COLAMD's column order with row pivoting, which an earlier version therefore also tried on
+// small matrices.
 //
 // The pattern is analysed once (ordering, permutation map, symbolic analysis) and factorised
 // again for new values on the same pattern.
@@ -42,15 +41,9 @@ class SparseLu {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   // Entries of the L and U factors.
   long factor_entries() const;
-  // True when the column order (COLAMD) was kept rather than the symmetric one.
-  bool column_ordered() const { return use_column_order_; }
 
   // A diagonal pivot is kept while it is at least this fraction of its column's largest entry.
   static constexpr double kDiagonalPivotThreshold = 0.01;
-  // Matrices with at most this many entries also try the column order (a trial of up to about
-  // 10 ms on a particle grid), which is kept when its factors are this much smaller.
-  static constexpr long kTrialEntries = 100000;
-  static constexpr double kColumnOrderRatio = 0.75;
 
  private:
   std::vector<int> position_;             // unknown i of A -> its place in P^T A P
@@ -58,12 +51,7 @@ class SparseLu {
   std::vector<int> permuted_index_;       // entry k of A's values -> its entry in P^T A P
   Eigen::SparseMatrix<double> permuted_;  // P^T A P
   using SymmetricLu = Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::NaturalOrdering<int>>;
-  using ColumnLu = Eigen::SparseLU<Eigen::SparseMatrix<double>, Eigen::COLAMDOrdering<int>>;
   std::unique_ptr<SymmetricLu> lu_;  // of P^T A P
-  // the column-ordered alternative: analysed with the pattern when it is small, tried at the
-  // first factorisation; the order not kept is dropped with its factors
-  std::unique_ptr<ColumnLu> column_lu_;
-  bool trial_pending_ = false, use_column_order_ = false;
 };
 
 }  // namespace periflex

@@ -5,7 +5,7 @@
 // rows and columns alike (P^T A P), so the diagonal stays on the diagonal; the LU then prefers
 // the diagonal pivot (threshold partial pivoting) and keeps that order unless a diagonal entry
 // is small against its column. On the notched plate's HHT matrix (8,006 unknowns, 538,000
-// entries) this factorises in 70-90 ms against 230 ms (plus 60 ms of analysis) for a column
+// entries) this factorises in 70-110 ms against 230 ms (plus 60 ms of analysis) for a column
 // order from COLAMD, for the same fill: the symmetric order's elimination tree gives the
 // supernodal LU larger dense blocks. (Eigen's SparseLU with AMDOrdering applies that order
 // inverted and fills 6x more, 3.7 s on the same matrix; hence the permutation is done here.)

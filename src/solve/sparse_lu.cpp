@@ -33,7 +33,7 @@ void symmetric_pattern(int n, const int* outer, const int* inner, std::vector<in
 
 // Approximate minimum degree on the pattern of A + A^T, with the unknowns of identical columns
 // there (a particle's x and y) ordered as one and kept together: on the notched plate's matrix
-// the graph ordered has a quarter of the edges, and the ordering takes about 4 against 18 ms.
+// the graph ordered has a quarter of the edges, and the ordering takes 10 against 18-21 ms.
 // Returns each unknown's place in the order.
 std::vector<int> minimum_degree_positions(int n, const int* outer, const int* inner) {
   std::vector<int> start, rows;
@@ -77,7 +77,7 @@ void SparseLu::analyse(const Eigen::SparseMatrix<double>& a) {
   inner_.assign(inner, inner + nnz);
   position_ = minimum_degree_positions(n, outer, inner);
 
-  // P^T A P built by two counting passes, remembering where each entry of A lands (3 ms on the
+  // P^T A P built by two counting passes, remembering where each entry of A lands (8 ms on the
   // plate's matrix; Eigen's permutation product takes 34): the entries by permuted row, in the
   // order of their permuted columns, then back into permuted columns in the order of their rows
   std::vector<int> column_at(static_cast<size_t>(n));

@@ -113,12 +113,13 @@ class Hht final : public Integrator {
                                   h * h * a0_.lpNorm<Eigen::Infinity>(), 1e-12});
     const double tolerance = kNewtonTolerance * size;
     a1_ = a0_;  // predictor: the acceleration carries over
+    iterate_failure_.clear();
     bool fresh_tangent = false;
     last_increment_ = std::numeric_limits<double>::infinity();
     double previous = std::numeric_limits<double>::infinity();
     for (int iteration = 0; iteration < kMaxIterations; ++iteration) {
       update_state(s, h);
-      system.derivative(t + h, q1_, v1_, f1_, power1_);
+      if (!evaluate_iterate(system, t + h, q1_, v1_, f1_, power1_)) return false;
       residual_ = a1_ - (1.0 + alpha_) * f1_ + alpha_ * f0_;
       last_residual_ = residual_.lpNorm<Eigen::Infinity>();
       if (!std::isfinite(last_residual_)) return false;
@@ -146,6 +147,21 @@ class Hht final : public Integrator {
       }
     }
     return false;
+  }
+
+  // The derivative at a Newton iterate or a perturbation of one; false when the system cannot
+  // evaluate it (a constraint solve at a singular configuration). An iterate is not a state of
+  // the run: one that lands where the mechanism locks says the step is too large for Newton, and
+  // the failure asks for a smaller step instead of a change of geometry.
+  bool evaluate_iterate(OdeSystem& system, double t, const Eigen::VectorXd& q, const Eigen::VectorXd& v,
+                        Eigen::VectorXd& f, Eigen::Vector3d& power) {
+    try {
+      system.derivative(t, q, v, f, power);
+      return true;
+    } catch (const NumericalError& e) {
+      iterate_failure_ = e.diagnostic().cause;
+      return false;
+    }
   }
 
   // The iteration matrix S = I - (1 + alpha) (beta h^2 f_q + gamma h f_qd) by coloured finite
@@ -176,7 +192,7 @@ class Hht final : public Integrator {
         q_trial_[j] += beta_ * h * h * eps;
         v_trial_[j] += gamma_ * h * eps;
       }
-      system.derivative(t + h, q_trial_, v_trial_, f_trial_, power_trial_);
+      if (!evaluate_iterate(system, t + h, q_trial_, v_trial_, f_trial_, power_trial_)) return false;
       for (int j : columns) {
         for (int k = pattern_start[j]; k < pattern_start[j + 1]; ++k) {
           const int i = pattern_rows[k];
@@ -230,10 +246,18 @@ class Hht final : public Integrator {
 
   [[noreturn]] void fail(double t, double h) const {
     std::ostringstream cause;
-    cause << "the HHT Newton iterations did not converge in " << kMaxIterations << " iterations (residual "
-          << last_residual_ << ", last position increment " << last_increment_ << ") at dt = " << h;
+    if (!iterate_failure_.empty())
+      cause << "an HHT Newton iterate (a trial, not a state of the run) reached a configuration the system cannot "
+               "evaluate at dt = "
+            << h << " (" << iterate_failure_
+            << "): the step is too large for the Newton iterations, or the motion meets a singular position within it";
+    else
+      cause << "the HHT Newton iterations did not converge in " << kMaxIterations << " iterations (residual "
+            << last_residual_ << ", last position increment " << last_increment_ << ") at dt = " << h;
     std::ostringstream remedy;
     remedy << "lower solver.dt (e.g. to " << 0.25 * h << ")";
+    if (!iterate_failure_.empty())
+      remedy << "; if the mechanism passes a toggle (singular) position, change its geometry or driver";
     throw NumericalError({"Newton residual", accepted_ + 1, t + h, cause.str(), remedy.str()});
   }
 
@@ -250,6 +274,7 @@ class Hht final : public Integrator {
   Eigen::VectorXd a1_, q1_, v1_, f1_, residual_;
   Eigen::Vector3d power1_ = Eigen::Vector3d::Zero();
   double last_residual_ = 0.0, last_increment_ = 0.0;
+  std::string iterate_failure_;  // why the last iterate could not be evaluated, for the failure
   // finite-difference scratch
   Eigen::VectorXd q_trial_, v_trial_, f_trial_;
   Eigen::Vector3d power_trial_ = Eigen::Vector3d::Zero();

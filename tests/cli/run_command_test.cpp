@@ -276,5 +276,30 @@ TEST(RunCommand, ClosingLineAndSummaryAgree) {
   EXPECT_EQ(summary["steps"], 10000);
 }
 
+// HHT far above the step its Newton iterations can take on the flexible slider-crank: a Newton
+// iterate lands where the constraints cannot be solved. That is told as a trial of a step too
+// large (exit 3, a smaller step proposed first, the summary agreeing), not as a mechanism at a
+// toggle position; the step proposed runs to the end.
+TEST(RunCommand, HhtStepTooLargeForNewtonAsksForASmallerStep) {
+  const auto out = fresh_directory("hht_too_large");
+  const auto r = run_child({"run", scene("flexible_slider_crank.toml"), "--set", "solver.integrator=\"hht\"", "--set",
+                            "solver.dt=2e-3", "--out", out.string(), "--quiet"},
+                           kLimit);
+  ASSERT_FALSE(r.timed_out) << r.output;
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("Newton iterate (a trial, not a state of the run)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Try: lower solver.dt (e.g. to 0.0005)"), std::string::npos) << r.output;
+  const auto summary = read_summary(out / "summary.json");
+  EXPECT_EQ(summary["status"], "numerical_failure");
+  EXPECT_EQ(summary["exit_code"], 3);
+
+  const auto smaller = fresh_directory("hht_smaller");
+  const auto ok = run_child({"run", scene("flexible_slider_crank.toml"), "--set", "solver.integrator=\"hht\"", "--set",
+                             "solver.dt=5e-4", "--out", smaller.string(), "--quiet"},
+                            kLimit);
+  ASSERT_FALSE(ok.timed_out) << ok.output;
+  EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
 }  // namespace
 }  // namespace periflex::testing

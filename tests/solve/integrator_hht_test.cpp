@@ -182,5 +182,43 @@ TEST(IntegratorHht, NewtonFailureNamesResidualStepAndRemedy) {
   }
 }
 
+// A system whose constraints cannot be solved away from the start: |q| > 0.5 throws as the
+// constraint solve does at a toggle position. The step is far too large for Newton, whose
+// iterates overshoot into that region; the start and the answer lie well inside it.
+class SingularAwayFromTheStart final : public OdeSystem {
+ public:
+  void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd&, Eigen::VectorXd& qdd,
+                  Eigen::Vector3d& power) override {
+    if (std::abs(q[0]) > 0.5)
+      throw NumericalError({"constraint Jacobian", -1, t, "the constraint Jacobian is singular", "change the geometry"});
+    qdd.resize(1);
+    qdd[0] = -1e6 * q[0] - 1e9 * q[0] * q[0] * q[0];
+    power.setZero();
+  }
+};
+
+// A Newton iterate the system cannot evaluate is a step too large, not a singular mechanism:
+// the failure says so and asks for a smaller step.
+TEST(IntegratorHht, UnsolvableNewtonIterateAsksForASmallerStep) {
+  SingularAwayFromTheStart system;
+  auto hht = make_hht(kDefaultHhtAlpha);
+  OdeState s;
+  s.q = Eigen::VectorXd::Constant(1, 0.1);
+  s.qd = Eigen::VectorXd::Zero(1);
+  // a step Newton can take: the oscillation stays inside the region the system evaluates
+  OdeState small = s;
+  for (int k = 0; k < 100; ++k) hht->step(system, k * 1e-4, 1e-4, small);
+  EXPECT_LE(std::abs(small.q[0]), 0.1 + 1e-9);
+  hht = make_hht(kDefaultHhtAlpha);
+  try {
+    hht->step(system, 0.0, 1.0, s);
+    FAIL() << "expected a NumericalError, q = " << s.q[0];
+  } catch (const NumericalError& e) {
+    EXPECT_EQ(e.diagnostic().quantity, "Newton residual") << e.what();
+    EXPECT_NE(e.diagnostic().cause.find("constraint Jacobian is singular"), std::string::npos) << e.what();
+    EXPECT_NE(e.diagnostic().remedy.find("lower solver.dt"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace periflex

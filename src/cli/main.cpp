@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <string>
 
 #include "cli/check_command.h"
 #include "cli/gui_command.h"
@@ -32,6 +33,21 @@ bool display_available() {
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   return (x && *x) || (wayland && *wayland);
 }
+
+// A count of steps or frames: a whole number >= 0. (CLI11's NonNegativeNumber names its upper
+// bound, the largest double, in 300 digits.)
+std::string count_check(const std::string& text) {
+  size_t used = 0;
+  long long value = -1;
+  try {
+    value = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || value < 0) return "expected a whole number >= 0, found '" + text + "'";
+  return {};
+}
+const CLI::Validator kCount(count_check, "N");
 
 void add_scene_options(CLI::App* command, std::vector<std::string>& overrides) {
   command->add_option("--set", overrides, "Override a scene value, e.g. --set solver.dt=1e-4 (repeatable)")
@@ -90,7 +106,7 @@ int run_main(int argc, char** argv) {
       ->check(CLI::Range(0, 1024));
   run_cmd->add_flag("--quiet", run.quiet, "No progress bar; only the final line");
   run_cmd->add_option("--vtk-every", run.vtk_every, "Write VTK snapshots (particles and rigid bodies, for ParaView) every N steps")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   run_cmd->add_option("--checkpoint-every", run.checkpoint_every,
                       "Write the whole state every T simulated seconds (at exact multiples of T)");
   run_cmd->add_option("--checkpoint-dir", run.checkpoint_dir, "Folder of the checkpoints (default <out>/checkpoints)");
@@ -109,7 +125,7 @@ int run_main(int argc, char** argv) {
   gui_cmd->add_option("scene", gui.scene_path, "Scene file (default: the notched plate)");
   add_scene_options(gui_cmd, gui.overrides);
   gui_cmd->add_option("--frames", gui.frames, "Draw this many frames, then exit (for scripted runs)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   gui_cmd->add_option("--screenshot", gui.screenshot, "Write the last frame to this PNG");
   gui_cmd->add_option("--script", gui.script, "Timed actions, e.g. 'pause@5; step@6; resume@8'");
   gui_cmd->add_option("--samples", gui.samples,
@@ -123,7 +139,7 @@ int run_main(int argc, char** argv) {
   auto* play_cmd = app.add_subcommand("play", "Open the visualiser on a checkpoint folder (or a run's VTK series) and move through its states");
   play_cmd->add_option("folder", play.playback_dir, "Checkpoint folder (run --checkpoint-every) or VTK series folder (run --vtk-every)")->required();
   play_cmd->add_option("--frames", play.frames, "Draw this many frames, then exit (for scripted runs)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(kCount);
   play_cmd->add_option("--screenshot", play.screenshot, "Write the last frame to this PNG");
   play_cmd->add_option("--script", play.script, "Timed actions, e.g. 'step@2; step@3'");
   play_cmd->add_option("--samples", play.samples, "Multisamples of the window, 1 = off")->check(CLI::Range(1, 16));

@@ -49,6 +49,44 @@ std::string count_check(const std::string& text) {
 }
 const CLI::Validator kCount(count_check, "N");
 
+// The subcommands whose work lives in their own files (study, sweep, stability): their options
+// here, with the rest of the command line, so that only this file compiles CLI11.
+CLI::App* add_study_subcommand(CLI::App& app, StudyOptions& o) {
+  auto* cmd = app.add_subcommand("study", "Error against run time for every method a study file names: "
+                                          "study.csv, study.md, study.png");
+  cmd->add_option("study", o.study_path, "Study file (TOML), e.g. scenes/studies/pendulum.toml")->required();
+  cmd->add_option("--out", o.out_dir, "Output directory (default out/study-<name>)");
+  cmd->add_option("--repeats", o.repeats, "Timed repeats per run (overrides the study's repeats)")
+      ->check(CLI::Range(1, 1000));
+  cmd->add_flag("--quiet", o.quiet, "Print only where the results went");
+  return cmd;
+}
+
+CLI::App* add_sweep_subcommand(CLI::App& app, SweepOptions& o) {
+  auto* cmd = app.add_subcommand("sweep", "Runs a grid of scene values (a sweep file), or gathers one: sweep.csv");
+  cmd->add_option("sweep", o.sweep_path, "Sweep file (TOML), e.g. scenes/studies/notched_plate_sweep.toml");
+  cmd->add_option("--out", o.out_dir, "Output directory (default out/sweep-<name>)");
+  cmd->add_option("--jobs", o.jobs, "Runs at once on this machine (overrides the sweep's jobs)")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_option("--jobs-file", o.jobs_file,
+                  "Write one command line per run here (GNU parallel) and sweep.slurm beside the runs; run nothing");
+  cmd->add_option("--collect", o.collect_dir, "Gather the runs of this sweep folder into sweep.csv");
+  cmd->add_flag("--quiet", o.quiet, "Print only failed runs and where the results went");
+  return cmd;
+}
+
+CLI::App* add_stability_subcommand(CLI::App& app, StabilityOptions& o) {
+  auto* command = app.add_subcommand(
+      "stability", "Run the numerical stability suite: stiff, extreme and long cases; writes a table");
+  command->add_flag("--quick", o.quick, "Only the fast cases (a few minutes; the ones ctest runs)");
+  command->add_option("--out", o.out_dir, "Output directory (default out/stability)");
+  command->add_option("--case", o.cases, "Run only cases whose name contains this text (repeatable)");
+  command->add_flag("--list", o.list, "List the cases and exit");
+  command->add_option("--threads", o.threads, "OpenMP threads of each case (default 1)")->check(CLI::Range(1, 1024));
+  command->add_option("--program", o.program, "The periflex executable each case runs (default: this one)");
+  return command;
+}
+
 void add_scene_options(CLI::App* command, std::vector<std::string>& overrides) {
   command->add_option("--set", overrides, "Override a scene value, e.g. --set solver.dt=1e-4 (repeatable)")
       ->type_name("KEY=VALUE");

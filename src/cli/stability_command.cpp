@@ -1,6 +1,5 @@
 #include "cli/stability_command.h"
 
-#include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "core/error.h"
@@ -9,17 +8,6 @@
 
 namespace periflex {
 
-CLI::App* add_stability_subcommand(CLI::App& app, StabilityOptions& o) {
-  auto* command = app.add_subcommand(
-      "stability", "Run the numerical stability suite: stiff, extreme and long cases; writes a table");
-  command->add_flag("--quick", o.quick, "Only the fast cases (a few minutes; the ones ctest runs)");
-  command->add_option("--out", o.out_dir, "Output directory (default out/stability)");
-  command->add_option("--case", o.cases, "Run only cases whose name contains this text (repeatable)");
-  command->add_flag("--list", o.list, "List the cases and exit");
-  command->add_option("--threads", o.threads, "OpenMP threads of each case (default 1)")->check(CLI::Range(1, 1024));
-  command->add_option("--program", o.program, "The periflex executable each case runs (default: this one)");
-  return command;
-}
 
 int stability_command(const StabilityOptions& options) {
   // the cases to run

@@ -5,10 +5,6 @@
 #include <string>
 #include <vector>
 
-namespace CLI {
-class App;
-}
-
 namespace periflex {
 
 struct StabilityOptions {
@@ -19,9 +15,6 @@ struct StabilityOptions {
   int threads = 1;                    // OpenMP threads of each case
   std::string program;                // the periflex run for each case; empty: this program
 };
-
-// Registers the subcommand and its options on `app`; `options` must outlive parsing.
-CLI::App* add_stability_subcommand(CLI::App& app, StabilityOptions& options);
 
 // Runs the suite. Returns 0 when every case behaved as expected, 1 otherwise.
 int stability_command(const StabilityOptions& options);

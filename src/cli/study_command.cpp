@@ -1,6 +1,5 @@
 #include "cli/study_command.h"
 
-#include <CLI/CLI.hpp>
 #include <cstdio>
 
 #include "core/error.h"
@@ -11,16 +10,6 @@
 
 namespace periflex {
 
-CLI::App* add_study_subcommand(CLI::App& app, StudyOptions& o) {
-  auto* cmd = app.add_subcommand("study", "Error against run time for every method a study file names: "
-                                          "study.csv, study.md, study.png");
-  cmd->add_option("study", o.study_path, "Study file (TOML), e.g. scenes/studies/pendulum.toml")->required();
-  cmd->add_option("--out", o.out_dir, "Output directory (default out/study-<name>)");
-  cmd->add_option("--repeats", o.repeats, "Timed repeats per run (overrides the study's repeats)")
-      ->check(CLI::Range(1, 1000));
-  cmd->add_flag("--quiet", o.quiet, "Print only where the results went");
-  return cmd;
-}
 
 int study_command(const StudyOptions& options) {
   try {

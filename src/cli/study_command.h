@@ -4,10 +4,6 @@
 
 #include <string>
 
-namespace CLI {
-class App;
-}
-
 namespace periflex {
 
 struct StudyOptions {
@@ -16,10 +12,6 @@ struct StudyOptions {
   int repeats = 0;            // > 0 overrides the study's repeats
   bool quiet = false;         // only the final lines
 };
-
-// Registers the `study` subcommand and its options on `app`; returns it so the caller can test
-// whether it was chosen (`if (*cmd) return study_command(options);`).
-CLI::App* add_study_subcommand(CLI::App& app, StudyOptions& options);
 
 // Runs the study. Returns the process exit code (0 ok, 2 bad input, 3 numerical failure of the
 // reference, 1 other). Runs of the grid that fail numerically are rows of the table, not errors.

@@ -1,6 +1,5 @@
 #include "cli/sweep_command.h"
 
-#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <atomic>
 #include <cstdio>
@@ -230,18 +229,6 @@ void write_jobs(const SweepDef& sweep, const std::vector<SweepRun>& runs, const 
 
 }  // namespace
 
-CLI::App* add_sweep_subcommand(CLI::App& app, SweepOptions& o) {
-  auto* cmd = app.add_subcommand("sweep", "Runs a grid of scene values (a sweep file), or gathers one: sweep.csv");
-  cmd->add_option("sweep", o.sweep_path, "Sweep file (TOML), e.g. scenes/studies/notched_plate_sweep.toml");
-  cmd->add_option("--out", o.out_dir, "Output directory (default out/sweep-<name>)");
-  cmd->add_option("--jobs", o.jobs, "Runs at once on this machine (overrides the sweep's jobs)")
-      ->check(CLI::Range(1, 1024));
-  cmd->add_option("--jobs-file", o.jobs_file,
-                  "Write one command line per run here (GNU parallel) and sweep.slurm beside the runs; run nothing");
-  cmd->add_option("--collect", o.collect_dir, "Gather the runs of this sweep folder into sweep.csv");
-  cmd->add_flag("--quiet", o.quiet, "Print only failed runs and where the results went");
-  return cmd;
-}
 
 int sweep_command(const SweepOptions& options) {
   try {

@@ -8,10 +8,6 @@
 
 #include <string>
 
-namespace CLI {
-class App;
-}
-
 namespace periflex {
 
 struct SweepOptions {
@@ -22,8 +18,6 @@ struct SweepOptions {
   std::string collect_dir;  // gather the runs of this folder into sweep.csv
   bool quiet = false;
 };
-
-CLI::App* add_sweep_subcommand(CLI::App& app, SweepOptions& options);
 
 // Returns the exit code: 0 every run ok (or the files written), 2 bad input, 1 a run failed.
 int sweep_command(const SweepOptions& options);

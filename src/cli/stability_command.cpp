@@ -8,7 +8,6 @@
 
 namespace periflex {
 
-
 int stability_command(const StabilityOptions& options) {
   // the cases to run
   std::vector<StabilityCase> cases;

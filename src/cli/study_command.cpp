@@ -10,7 +10,6 @@
 
 namespace periflex {
 
-
 int study_command(const StudyOptions& options) {
   try {
     StudyDef study = load_study(options.study_path);

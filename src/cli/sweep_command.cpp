@@ -229,7 +229,6 @@ void write_jobs(const SweepDef& sweep, const std::vector<SweepRun>& runs, const 
 
 }  // namespace
 
-
 int sweep_command(const SweepOptions& options) {
   try {
     if (!options.collect_dir.empty()) {

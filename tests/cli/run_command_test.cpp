@@ -281,10 +281,13 @@ TEST(RunCommand, ClosingLineAndSummaryAgree) {
 // large (exit 3, a smaller step proposed first, the summary agreeing), not as a mechanism at a
 // toggle position; the step proposed runs to the end.
 TEST(RunCommand, HhtStepTooLargeForNewtonAsksForASmallerStep) {
+  const auto run_hht = [](const std::string& dt, const std::filesystem::path& out) {
+    return run_child({"run", scene("flexible_slider_crank.toml"), "--set", "solver.integrator=\"hht\"", "--set",
+                      "solver.dt=" + dt, "--out", out.string(), "--quiet"},
+                     kLimit);
+  };
   const auto out = fresh_directory("hht_too_large");
-  const auto r = run_child({"run", scene("flexible_slider_crank.toml"), "--set", "solver.integrator=\"hht\"", "--set",
-                            "solver.dt=2e-3", "--out", out.string(), "--quiet"},
-                           kLimit);
+  const auto r = run_hht("2e-3", out);
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("Newton iterate (a trial, not a state of the run)"), std::string::npos) << r.output;
@@ -293,10 +296,7 @@ TEST(RunCommand, HhtStepTooLargeForNewtonAsksForASmallerStep) {
   EXPECT_EQ(summary["status"], "numerical_failure");
   EXPECT_EQ(summary["exit_code"], 3);
 
-  const auto smaller = fresh_directory("hht_smaller");
-  const auto ok = run_child({"run", scene("flexible_slider_crank.toml"), "--set", "solver.integrator=\"hht\"", "--set",
-                             "solver.dt=5e-4", "--out", smaller.string(), "--quiet"},
-                            kLimit);
+  const auto ok = run_hht("5e-4", fresh_directory("hht_smaller"));
   ASSERT_FALSE(ok.timed_out) << ok.output;
   EXPECT_EQ(ok.exit_code, 0) << ok.output;
 }

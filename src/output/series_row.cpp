@@ -1,5 +1,7 @@
 #include "output/series_row.h"
 
+#include "scene/scene_def.h"
+
 namespace periflex {
 
 std::vector<std::string> series_columns(const std::vector<std::string>& probe_columns, bool with_damage,
@@ -36,6 +38,20 @@ void series_values(const Sample& s, bool with_damage, bool with_contact, std::ve
 
 std::vector<std::string> series_columns(const Simulation& sim) {
   return series_columns(sim.probe_columns(), sim.info().particles > 0, !sim.scene().contacts.empty());
+}
+
+std::vector<std::string> series_columns(const SceneDef& scene) {
+  const auto flexible = [&scene](const std::string& body) {
+    for (const FlexBodyDef& f : scene.flex_bodies)
+      if (f.name == body) return true;
+    return false;
+  };
+  std::vector<std::string> probes;
+  for (bool on_particle : {true, false}) {
+    for (const ProbeDef& p : scene.probes)
+      if (flexible(p.body) == on_particle) Simulation::append_probe_columns(p.name, on_particle, probes);
+  }
+  return series_columns(probes, !scene.flex_bodies.empty(), !scene.contacts.empty());
 }
 
 void fill_series_row(const Simulation& sim, std::shared_ptr<const std::vector<std::string>>& columns, Snapshot& out) {

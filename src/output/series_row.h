@@ -20,6 +20,11 @@ std::vector<std::string> series_columns(const std::vector<std::string>& probe_co
 // columns with [[contact]]).
 std::vector<std::string> series_columns(const Simulation& sim);
 
+// The same columns from the scene's definitions alone, before any model is built: what a sweep
+// checks the column names it gathers against. The model resolves the probes on flexible bodies
+// with the bodies, so those come first, then the rigid bodies' probes, each in scene order.
+std::vector<std::string> series_columns(const SceneDef& scene);
+
 // The values of `sample` in the order of series_columns (out is replaced).
 void series_values(const Sample& sample, bool with_damage, bool with_contact, std::vector<double>& out);
 

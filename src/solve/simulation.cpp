@@ -830,15 +830,17 @@ void Simulation::advance_to(double t) {
 
 bool Simulation::reached(double t) const { return time_reached(impl_->time, t, impl_->clock.dt()); }
 
+void Simulation::append_probe_columns(const std::string& name, bool on_particle, std::vector<std::string>& out) {
+  for (const char* c : {"x", "y", "vx", "vy"}) out.push_back("probe." + name + "." + c);
+  if (!on_particle) {
+    out.push_back("probe." + name + ".angle");
+    out.push_back("probe." + name + ".omega");
+  }
+}
+
 std::vector<std::string> Simulation::probe_columns() const {
   std::vector<std::string> columns;
-  for (const auto& p : impl_->model->probes) {
-    for (const char* c : {"x", "y", "vx", "vy"}) columns.push_back("probe." + p.name + "." + c);
-    if (!p.is_particle()) {
-      columns.push_back("probe." + p.name + ".angle");
-      columns.push_back("probe." + p.name + ".omega");
-    }
-  }
+  for (const auto& p : impl_->model->probes) append_probe_columns(p.name, p.is_particle(), columns);
   return columns;
 }
 

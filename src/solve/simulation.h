@@ -98,6 +98,9 @@ class Simulation {
   double end_time() const;
 
   std::vector<std::string> probe_columns() const;  // "probe.<name>.x", ...
+  // The columns of one probe: position and velocity, and the angle and angular velocity of a
+  // rigid body's point.
+  static void append_probe_columns(const std::string& name, bool on_particle, std::vector<std::string>& out);
   Sample sample() const;
   // Global position of probe `index` (scene order) now: the cheap read a caller that records a
   // trajectory at every step needs (sample() computes energies and violations too).

@@ -1,11 +1,13 @@
 #include "study/sweep_def.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include "output/series_row.h"
 #include "scene/scene_loader.h"
 #include "scene/toml_reader.h"
 #include "study/scene_reference.h"
@@ -32,6 +34,19 @@ std::string value_text(const toml::node& node) {
   return out.str();
 }
 
+// Every gathered column must be one the run writes: a misspelt name would otherwise leave its
+// column of sweep.csv empty after the whole sweep has run.
+void check_series(const SweepDef& sweep, const SweepRun& run, const SceneDef& scene) {
+  const std::vector<std::string> columns = series_columns(scene);
+  for (const std::string& name : sweep.series) {
+    if (std::find(columns.begin(), columns.end(), name) != columns.end()) continue;
+    std::string expected;
+    for (const std::string& c : columns) expected += (expected.empty() ? "" : ", ") + c;
+    throw InputError(sweep.series_where, "run " + run.folder + " writes no series.csv column '" + name +
+                                             "'; expected one of: " + expected);
+  }
+}
+
 }  // namespace
 
 SweepDef parse_sweep(const std::string& toml_text, const std::string& display_path) {
@@ -53,6 +68,7 @@ SweepDef parse_sweep(const std::string& toml_text, const std::string& display_pa
   sweep.jobs = static_cast<int>(s.integer("jobs", 2, 1));
   sweep.timeout_seconds = s.number("timeout", 3600.0, Sign::kPositive);
   sweep.memory_bytes = s.number("memory_gb", 4.0, Sign::kPositive) * 1e9;
+  if (s.has("series")) sweep.series_where = context.locate(s.node("series"), s.key_path("series"));
   sweep.series = s.strings("series");
   s.finish();
 
@@ -113,8 +129,9 @@ std::vector<SweepRun> expand_sweep(const SweepDef& sweep) {
       run.overrides.push_back(p.key + "=" + p.values[at[a]]);
     }
     // the scene must take every value: a refusal is reported at the parameter in the sweep file
+    SceneDef scene;
     try {
-      load_scene(sweep.scene_path, run.overrides);
+      scene = load_scene(sweep.scene_path, run.overrides);
     } catch (const InputError& error) {
       // an override's error names it ("override 'key=value'"): the parameter it came from, or
       // the sweep's own `set`; an error of the scene itself keeps its place in the scene
@@ -129,6 +146,7 @@ std::vector<SweepRun> expand_sweep(const SweepDef& sweep) {
       }
       throw InputError(where, "run " + run.folder + ": " + error.detail());
     }
+    check_series(sweep, run, scene);
     runs.push_back(run);
     // the next combination, the last axis fastest
     size_t a = axes;

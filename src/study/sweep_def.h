@@ -38,6 +38,7 @@ struct SweepDef {
   double timeout_seconds = 3600.0;
   double memory_bytes = 4e9;
   std::vector<std::string> series;  // series.csv columns whose last value is gathered
+  SourceLocation series_where;      // the series' position in the sweep file
 };
 
 // One run of the grid: its folder name and every override it runs with.
@@ -53,7 +54,8 @@ SweepDef load_sweep(const std::string& path);
 
 // The runs of the grid, the last parameter varying fastest. Each run's scene is loaded once
 // with its overrides, so a key or value the scene refuses is reported at the parameter's line
-// in the sweep file (InputError).
+// in the sweep file, and a series column its runs would not write at the series' line
+// (InputError).
 std::vector<SweepRun> expand_sweep(const SweepDef& sweep);
 
 }  // namespace periflex

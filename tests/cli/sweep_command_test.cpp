@@ -27,14 +27,16 @@ const char* kMemoryLine = "";
 
 // A sweep of the pendulum over solver.dt and the bob's mass, 0.05 s each.
 // `runs`: the sweep is run (a refused file runs nothing and keeps the line numbers its test names)
-fs::path write_sweep(const fs::path& dir, const std::string& parameters, bool runs = true) {
+// `series`: the columns gathered, as the TOML array's inside
+fs::path write_sweep(const fs::path& dir, const std::string& parameters, bool runs = true,
+                     const std::string& series = "\"probe.bob.x\"") {
   const fs::path file = dir / "pendulum_sweep.toml";
   std::ofstream(file) << "[sweep]\n"
                       << "scene = \"" << scene("pendulum.toml") << "\"\n"
                       << "set = [\"solver.end_time=0.05\"]\n"
                       << "jobs = 2\n"
                       << "timeout = 60\n"
-                      << "series = [\"probe.bob.x\"]\n"
+                      << "series = [" << series << "]\n"
                       << (runs ? kMemoryLine : "") << parameters;
   return file;
 }
@@ -117,6 +119,7 @@ struct BadSweep {
   std::string parameters;
   std::string where;  // file:line:column the message must name
   std::string words;  // and what it must say
+  std::string series = "\"probe.bob.x\"";
 };
 
 TEST(SweepCommand, BadSweepFilesExitTwoNamingFileLineAndColumn) {
@@ -125,10 +128,13 @@ TEST(SweepCommand, BadSweepFilesExitTwoNamingFileLineAndColumn) {
       {"ValuesNotAnArray", "[[parameter]]\nkey = \"solver.dt\"\nvalues = 1e-3\n", ":9:10", "array"},
       {"ValueTheSceneRefuses", "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3, -1.0]\n", ":9:10", "solver.dt"},
       {"NoParameters", "", ":1:1", "[[parameter]]"},
+      // a column no run writes (a rigid-body quantity of a pendulum's probe, and a misspelling)
+      {"SeriesColumnNoRunWrites", "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3]\n", ":6:10",
+       "writes no series.csv column 'probe.bob.z'", "\"probe.bob.angle\", \"probe.bob.z\""},
   };
   for (const BadSweep& c : cases) {
     const fs::path dir = fresh_directory(std::string("sweep_bad_") + c.name);
-    const fs::path file = write_sweep(dir, c.parameters, false);
+    const fs::path file = write_sweep(dir, c.parameters, false, c.series);
     const ProgramResult r = run_periflex("sweep " + file.string() + " --out " + (dir / "out").string());
     EXPECT_EQ(r.exit_code, 2) << c.name << ": " << r.output;
     EXPECT_NE(r.output.find(file.string() + c.where), std::string::npos) << c.name << ": " << r.output;

@@ -12,6 +12,7 @@
 
 #include "../cli/child_run.h"
 #include "../cli/run_output_files.h"
+#include "output/series_row.h"
 #include "scene/scene_loader.h"
 
 namespace periflex::testing {
@@ -67,6 +68,8 @@ TEST_P(EveryScene, RunsToItsEndWithExactRowsAndFrames) {
   EXPECT_DOUBLE_EQ(summary["simulated_time"].get<double>(), end);
   const Series s = read_series(out / "series.csv");
   EXPECT_EQ(s.incomplete_rows, 0);
+  // the columns a sweep checks its names against, from the definitions, are the ones written
+  EXPECT_EQ(s.columns, series_columns(scene));
   // rows at k * interval, and the end time once more when it is not one of them
   const long on_grid = instants(interval, end);
   const bool end_on_grid = std::abs(end / interval - std::round(end / interval)) < 1e-9;

@@ -131,7 +131,9 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
           Simulation probe_sim(scene);
           dt = 0.5 * probe_sim.info().critical_time_step;
         }
-        if (!(dt > 0.0)) throw InputError(study_location(study, "method.dt"), "no time step: give [[method]] dt");
+        if (!(dt > 0.0))
+          throw InputError(study.methods.empty() ? study_location(study, "method") : study.methods[0].where,
+                           "no time step: give [[method]] dt");
         scene.solver.dt = dt;
         row.dt = dt;
         scene.solver.end_time = 1.6 * extreme_at;

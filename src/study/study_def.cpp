@@ -26,6 +26,15 @@ std::vector<double> positive_list(TableReader& reader, std::string_view key) {
   return out;
 }
 
+// The place of every key of `table` in the file, as "<prefix>.<key>".
+void locate_keys(const ReadContext& context, const toml::table& table, const std::string& prefix,
+                 std::map<std::string, SourceLocation>& out) {
+  for (const auto& [key, node] : table) {
+    const std::string path = prefix + "." + std::string(key.str());
+    out[path] = context.locate(&node, path);
+  }
+}
+
 }  // namespace
 
 int theoretical_order(const std::string& integrator) {
@@ -44,6 +53,8 @@ std::string format_g(double v) {
 }
 
 SourceLocation study_location(const StudyDef& study, const std::string& key) {
+  const auto located = study.locations.find(key);
+  if (located != study.locations.end()) return located->second;
   SourceLocation where;
   where.file = study.path;
   where.key = key;
@@ -73,12 +84,9 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
                                                                           : StudyDef::Mode::kTime;
   study.reference = s.choice("reference", {"pendulum_exact", "slider_crank_exact", "converged", "csv"}, "converged");
   // a reference trajectory from a file: which file, its time column and the compared columns
-  if (s.has("reference_file")) {
-    study.reference_file_where = context.locate(s.node("reference_file"), s.key_path("reference_file"));
-    study.reference_file = path_beside(display_path, s.required_string("reference_file"));
-  }
+  locate_keys(context, *table, "study", study.locations);
+  if (s.has("reference_file")) study.reference_file = path_beside(display_path, s.required_string("reference_file"));
   study.reference_time_column = s.string("reference_time_column", "t");
-  if (s.has("columns")) study.columns_where = context.locate(s.node("columns"), s.key_path("columns"));
   study.columns = s.strings("columns");
   if (study.reference == "csv" && study.reference_file.empty())
     s.fail_missing("reference_file", "reference = \"csv\" needs the file of the reference trajectory");
@@ -125,6 +133,7 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
   // [refine]
   if (const toml::table* refine = top.optional_table("refine")) {
     TableReader r(context, *refine, "refine", "[refine]");
+    locate_keys(context, *refine, "refine", study.locations);
     study.refine.quantity = r.choice("quantity", {"wave_speed", "cantilever_frequency"}, "wave_speed");
     study.refine.flex_body = r.string("flex_body", "");
     study.refine.grid_spacing = positive_list(r, "grid_spacing");

@@ -16,6 +16,7 @@
 //   correction = ["baumgarte", "projection"]
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -55,7 +56,6 @@ struct StudyDef {
   std::string reference_file;           // csv: resolved against the study file's folder
   std::string reference_time_column = "t";  // csv: the time column (series.csv's name by default)
   std::vector<std::string> columns;     // csv: compared columns; empty: x and y of the compared probes
-  SourceLocation reference_file_where, columns_where;  // where the study named them
   std::string reference_integrator = "rk4";
   double reference_dt = 0.0;            // converged reference; default: smallest dt / 8
   std::string reference_correction;     // default: the scene's
@@ -66,6 +66,9 @@ struct StudyDef {
   Vec2 crack_direction = Vec2::UnitX(); // flexible scenes: the tip is the damaged particle furthest along it
   std::vector<StudyMethodDef> methods;
   RefineDef refine;
+  // where each key of [study] and [refine] stands in the file ("study.end_time" -> line,
+  // column), for the errors found when the study runs
+  std::map<std::string, SourceLocation> locations;
 };
 
 // Reads and validates a study file. Throws InputError with file, line and key.
@@ -78,7 +81,8 @@ int theoretical_order(const std::string& integrator);
 // True for integrators that choose their own step from rtol / atol.
 // A number as ostream writes it by default (6 significant digits), for tables and labels.
 std::string format_g(double v);
-// The study file and a dotted key, for InputError.
+// The study file and a dotted key, with the key's line and column when the file has it, for
+// InputError.
 SourceLocation study_location(const StudyDef& study, const std::string& key);
 bool is_adaptive_integrator(const std::string& integrator);
 

@@ -72,8 +72,7 @@ ProbeSelection select_probes(const StudyDef& study, const SceneDef& scene,
       if (c < 0) {
         std::string available;
         for (const std::string& a : columns) available += (available.empty() ? "" : ", ") + a;
-        SourceLocation where = study.columns_where.file.empty() ? study_location(study, "study.columns")
-                                                                : study.columns_where;
+        const SourceLocation where = study_location(study, "study.columns");
         throw InputError(where, "the scene has no column '" + name + "' to compare (its probe columns: " +
                                     (available.empty() ? "none" : available) + ")");
       }
@@ -348,9 +347,7 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
     std::vector<double> start_probes;
     if (study.reference == "csv") {
       // a user's trajectory: its columns named as the run's, covering the whole study
-      const SourceLocation where = study.reference_file_where.file.empty()
-                                       ? study_location(study, "study.reference_file")
-                                       : study.reference_file_where;
+      const SourceLocation where = study_location(study, "study.reference_file");
       ReferenceCsv csv = load_reference_csv(study.reference_file, study.reference_time_column, sel.names, where);
       csv.require_span(0.0, end_time, where);
       result.reference_description = "trajectory from " + study.reference_file + " (" +

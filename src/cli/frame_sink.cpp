@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "cli/camera_option.h"
 #include "cli/gui_command.h"
 #include "core/error.h"
 
@@ -36,28 +37,16 @@ ColorField parse_field(const std::string& name) {
                    "unknown field '" + name + "'; expected damage, displacement, speed or strain");
 }
 
-// --camera: grow (the default), fit, or a fixed view "X,Y,HEIGHT" in scene units.
-void parse_camera(const std::string& text, RecorderOptions& recorder) {
+// --camera, checked with the other flags before the scene was built.
+void set_camera(const std::string& text, RecorderOptions& recorder) {
   using Mode = RecorderOptions::CameraMode;
-  if (text.empty() || text == "grow") {
-    recorder.camera_mode = Mode::kGrow;
-    return;
-  }
-  if (text == "fit") {
-    recorder.camera_mode = Mode::kFit;
-    return;
-  }
-  double x = 0, y = 0, h = 0;
-  char tail = 0;
-  if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &x, &y, &h, &tail) != 3 || !std::isfinite(x) ||
-      !std::isfinite(y) || !std::isfinite(h) || !(h > 0.0)) {
-    throw InputError({"command line", 0, 0, "--camera"},
-                     "expected grow, fit, or X,Y,HEIGHT (the view's centre and height in metres, height > 0), "
-                     "not '" + text + "'");
-  }
-  recorder.camera_mode = Mode::kFixed;
-  recorder.camera.center = Vec2(x, y);
-  recorder.camera.view_height = h;
+  const std::optional<CameraOption> camera = parse_camera_option(text);
+  if (!camera) throw InputError({"command line", 0, 0, "--camera"}, camera_option_expected(text));
+  recorder.camera_mode = camera->mode == CameraOption::Mode::kGrow  ? Mode::kGrow
+                         : camera->mode == CameraOption::Mode::kFit ? Mode::kFit
+                                                                    : Mode::kFixed;
+  recorder.camera.center = Vec2(camera->center_x, camera->center_y);
+  recorder.camera.view_height = camera->view_height;
 }
 
 // The run's frames go through the off-screen recording pipeline (headless/recorder.h).
@@ -104,7 +93,7 @@ std::unique_ptr<FrameSink> make_frame_sink(const RunOptions& options, const std:
   recorder.fps = options.fps;
   recorder.screenshot_path = options.screenshot_path;
   recorder.settings.field = parse_field(options.field);
-  parse_camera(options.camera, recorder);
+  set_camera(options.camera, recorder);
   if (!options.colormap.empty()) recorder.settings.colormap = options.colormap;
   recorder.settings.show_contacts = options.draw_contacts;
   double deform = -1.0;

@@ -9,9 +9,11 @@
 #include <cstring>
 #include <filesystem>
 
+#include "cli/camera_option.h"
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "core/resources.h"
+#include "output/series_row.h"
 #include "scene/scene_budget.h"
 #include "scene/toml_reader.h"
 
@@ -108,6 +110,9 @@ void check_run_values(const RunOptions& o) {
       fail("--colormap", "unknown colour map '" + o.colormap + "'; expected one of: " + join(names));
   }
   if (!parse_deform_check(o.deform).empty()) fail("--deform", parse_deform_check(o.deform));
+  if (!parse_camera_option(o.camera)) fail("--camera", camera_option_expected(o.camera));
+  if (!o.screenshot_path.empty() && !o.snapshot_at)
+    fail("--screenshot", "needs --snapshot-at T to say which simulated time the frame shows");
   if (!o.field.empty()) {
     const std::vector<std::string> fields = {"damage", "displacement", "speed", "strain"};
     if (std::find(fields.begin(), fields.end(), o.field) == fields.end())
@@ -153,6 +158,8 @@ SceneDef load_run_scene(RunOptions& options) {
     plan.frame_every_where = flag_location("--frame-every");
   }
   check_scene_budget(scene, plan);
+  // the columns of this run's series.csv follow from the scene: no model is built for them
+  if (!options.plot.empty()) plot_columns_checked(options, series_columns(scene));
   if (options.snapshot_at && *options.snapshot_at > scene.solver.end_time)
     fail("--snapshot-at", "t = " + format_number(*options.snapshot_at) + " s is after the end of the run (" +
                               format_number(scene.solver.end_time) + " s)");

@@ -118,7 +118,8 @@ TEST(RunCommand, MovieWithoutRenderFlagIsRecorded) {
   EXPECT_EQ(movie_frames(movie), 11);  // t = 0, 0.5, ..., 5
 }
 
-// --camera: a fixed view is accepted, nonsense is refused naming the flag.
+// --camera: a fixed view is accepted, nonsense is refused naming the flag, with the other flags,
+// before the scene is built and any output is written.
 TEST(RunCommand, CameraOptionIsCheckedAndUsed) {
   const auto out = fresh_directory("camera");
   auto r = run_child({"run", scene("pendulum.toml"), "--frames", (out / "f").string(), "--frame-every", "1",
@@ -126,11 +127,14 @@ TEST(RunCommand, CameraOptionIsCheckedAndUsed) {
                      kLimit);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(count_files(out / "f", ".png"), 6);
-  r = run_child({"run", scene("pendulum.toml"), "--frames", (out / "g").string(), "--camera", "0,0,-1", "--out",
-                 out.string(), "--quiet"},
+  const auto refused = fresh_directory("camera_refused");
+  r = run_child({"run", scene("pendulum.toml"), "--frames", (refused / "g").string(), "--camera", "0,0,-1", "--out",
+                 refused.string(), "--quiet"},
                 kLimit);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--camera"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("stopped"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(refused / "summary.json"));
 }
 
 // --plot names series.csv columns of the run and draws into frames: a column the run does not
@@ -167,14 +171,20 @@ TEST(RunCommand, PlotColumnsAreCheckedAgainstTheRunsSeries) {
   EXPECT_NE(r.output.find("driver_work, energy_balance"), std::string::npos) << r.output;
 }
 
-// A screenshot time after the end used to print "screenshot in ..." and write nothing.
-TEST(RunCommand, ScreenshotAfterTheEndIsRefused) {
+// A screenshot time after the end used to print "screenshot in ..." and write nothing, and a
+// screenshot file without its time was passed over in silence.
+TEST(RunCommand, ScreenshotAfterTheEndOrWithoutItsTimeIsRefused) {
   const auto out = fresh_directory("late_shot");
-  const auto r = run_child({"run", scene("pendulum.toml"), "--snapshot-at", "9", "--screenshot",
-                            (out / "s.png").string(), "--out", out.string(), "--quiet"},
-                           kLimit);
+  auto r = run_child({"run", scene("pendulum.toml"), "--snapshot-at", "9", "--screenshot", (out / "s.png").string(),
+                      "--out", out.string(), "--quiet"},
+                     kLimit);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--snapshot-at"), std::string::npos) << r.output;
+  r = run_child({"run", scene("pendulum.toml"), "--screenshot", (out / "s.png").string(), "--out", out.string(),
+                 "--quiet"},
+                kLimit);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("key '--screenshot': needs --snapshot-at"), std::string::npos) << r.output;
 }
 #endif
 

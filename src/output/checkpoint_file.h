@@ -15,7 +15,7 @@
 namespace periflex {
 
 // Format version of the files this program writes and reads.
-constexpr uint32_t kCheckpointFormat = 3;
+constexpr uint32_t kCheckpointFormat = 4;
 
 struct CheckpointHeader {
   uint32_t format = kCheckpointFormat;

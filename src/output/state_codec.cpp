@@ -171,6 +171,7 @@ std::vector<uint8_t> encode_state(const SimState& s) {
   w.put<uint8_t>(s.passage.open ? 1 : 0);
   w.put<int64_t>(s.passage.seen_changes);
   w.put<uint64_t>(s.passage.stable_dependent);
+  w.put(s.passage.best_pivot);
   w.put(s.passage.entry_time);
   w.put(s.passage.entry_balance);
   w.put_vector(s.passage.rows);
@@ -236,6 +237,7 @@ SimState decode_state(const uint8_t* bytes, size_t size) {
   s.passage.open = r.get<uint8_t>("the passage watch") != 0;
   s.passage.seen_changes = r.get<int64_t>("the passage watch");
   s.passage.stable_dependent = r.get<uint64_t>("the passage watch");
+  s.passage.best_pivot = r.get<double>("the passage watch");
   s.passage.entry_time = r.get<double>("the passage watch");
   s.passage.entry_balance = r.get<double>("the passage watch");
   r.get_vector(s.passage.rows, "the passage watch");

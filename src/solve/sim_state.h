@@ -47,6 +47,9 @@ struct PassageWatch {
   bool open = false;
   long seen_changes = 0;
   uint64_t stable_dependent = 0;   // rows dependent outside passages
+  // the largest smallest pivot of the acceleration solve so far: how well conditioned this
+  // mechanism is away from its singular positions
+  double best_pivot = 0.0;
   double entry_time = 0.0, entry_balance = 0.0;
   // the energy balance over the last steps outside passages (symplectic integrators with
   // projection: the integrator's own energy error a passage is judged against)

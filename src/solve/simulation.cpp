@@ -56,12 +56,20 @@ constexpr double kBranchEnergy = 1e-5;
 // hide a switch of branch, and the fixed threshold holds (the run stops: lower the step).
 constexpr double kDriftFactor = 3.0;
 constexpr double kBranchEnergyCeiling = 1e-3;
-// Smallest scaled pivot of the acceleration solve (small systems) below which a step counts as
-// passing a singular position even when no row was left out. With Baumgarte correction, or at
-// steps that stride over the dead point, no stage may land within the rank threshold, yet the
-// solve near the position amplifies the drift by 1 / pivot and can carry the motion onto
-// another path. On the double four-bar the pivot falls by about 0.03 per step of 5e-3 s near a
-// dead point, so 0.1 opens a passage a few steps ahead of it at the step sizes in use.
+// Smallest scaled pivot of the acceleration solve (small systems), as a fraction of the largest
+// one the run has seen, below which a step counts as passing a singular position even when no
+// row was left out. With Baumgarte correction, or at steps that stride over the dead point, no
+// stage may land within the rank threshold, yet the solve near the position amplifies the drift
+// by 1 / pivot and can carry the motion onto another path. The pivot is of the mass-weighted
+// Jacobian, so its level away from any singular position depends on the masses and lengths:
+// 0.52-0.71 on the double four-bar, 0.10-0.15 on the four-bar crank-rocker with a crank ten
+// times heavier, whose transmission angle never leaves 39-79 degrees. Hence a fraction of the
+// best level: on the double four-bar the pivot falls by about 0.03 per step of 5e-3 s near a
+// dead point, and 0.2 of the level opens a passage a few steps ahead of it (at 0.10-0.14) at
+// the step sizes in use.
+constexpr double kPassagePivotFraction = 0.2;
+// The pivot threshold for naming the nearly dependent rows when a passage fails (relative to
+// the largest pivot of the unweighted Jacobian).
 constexpr double kPassagePivot = 0.1;
 }  // namespace
 
@@ -566,7 +574,9 @@ double Simulation::Impl::branch_energy_allowed(double span, double& own) const {
 void Simulation::Impl::check_passage() {
   const long changes = dynamics->rank_changes();
   const auto& now = dynamics->dependent_now();
-  const bool near = dynamics->smallest_pivot() < kPassagePivot;
+  const double pivot = dynamics->smallest_pivot();
+  passage.best_pivot = std::max(passage.best_pivot, pivot);
+  const bool near = pivot < kPassagePivotFraction * passage.best_pivot;
   if (changes != passage.seen_changes || near) {
     // the rank changed during this step, or the Jacobian is close to losing it: a singular
     // position is near
@@ -611,6 +621,7 @@ void Simulation::Impl::check_passage() {
     for (const auto& n : dynamics->nearly_dependent_blocks(passage.entry_time, entry_q, kPassagePivot))
       if (std::find(blocks.begin(), blocks.end(), n) == blocks.end()) blocks.push_back(n);
     for (const auto& n : blocks) names += (names.empty() ? "'" : ", '") + n + "'";
+    if (names.empty()) names = "none left out";
     throw NumericalError({"singular configuration", steps, time,
                           "the mechanism passed a singular position between t = " + number(passage.entry_time) +
                               " and " + number(time) + " s (dependent: " + names +

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -35,26 +36,21 @@ class Child {
  public:
   // Starts `PERIFLEX_BINARY args...` with its output going to a file.
   explicit Child(const std::vector<std::string>& args) {
-    static int counter = 0;
-    log_ = std::filesystem::temp_directory_path() /
-           ("periflex-child-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".log");
     std::vector<std::string> all{PERIFLEX_BINARY};
     all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (auto& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-    start_ = std::chrono::steady_clock::now();
-    if (posix_spawn(&pid_, argv[0], &actions, nullptr, argv.data(), environ) != 0) pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
+    start(all);
+  }
+  // Starts `/bin/sh -c command`, a command line as a user types it, in a process group of its
+  // own, so that a time limit stops the shell and every program it started.
+  static std::unique_ptr<Child> shell(const std::string& command) {
+    std::unique_ptr<Child> child(new Child());
+    child->group_ = true;
+    child->start({"/bin/sh", "-c", command});
+    return child;
   }
   ~Child() {
     if (pid_ > 0 && !ended_) {
-      ::kill(pid_, SIGKILL);
+      ::kill(group_ ? -pid_ : pid_, SIGKILL);
       ::waitpid(pid_, nullptr, 0);
     }
     std::error_code ignored;
@@ -82,7 +78,7 @@ class Child {
     wait_until([] { return false; }, limit);
     if (!ended_) {
       result_.timed_out = true;
-      ::kill(pid_, SIGKILL);
+      ::kill(group_ ? -pid_ : pid_, SIGKILL);
       reap(0);
     }
     std::ifstream in(log_);
@@ -93,6 +89,30 @@ class Child {
   }
 
  private:
+  Child() = default;
+  void start(std::vector<std::string> all) {
+    static int counter = 0;
+    log_ = std::filesystem::temp_directory_path() /
+           ("periflex-child-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + ".log");
+    std::vector<char*> argv;
+    for (auto& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    if (group_) {
+      posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+      posix_spawnattr_setpgroup(&attributes, 0);
+    }
+    start_ = std::chrono::steady_clock::now();
+    if (posix_spawn(&pid_, argv[0], &actions, &attributes, argv.data(), environ) != 0) pid_ = -1;
+    posix_spawnattr_destroy(&attributes);
+    posix_spawn_file_actions_destroy(&actions);
+  }
   bool poll_end() {
     if (ended_ || pid_ <= 0) return true;
     return reap(WNOHANG);
@@ -108,6 +128,7 @@ class Child {
   }
 
   pid_t pid_ = -1;
+  bool group_ = false;  // the child leads a process group of its own
   bool ended_ = false;
   std::filesystem::path log_;
   std::chrono::steady_clock::time_point start_;

@@ -92,13 +92,16 @@ TEST(StateCodec, AnyValuesReadBackBitForBit) {
 }
 
 // The passage watch's record of the energy balance (the integrator's own error a dead point is
-// judged against) survives a checkpoint, wrapped ring included: a restarted run judges its next
-// passage as the uninterrupted run does.
+// judged against) and the largest pivot seen (what "near singular" is measured against) survive
+// a checkpoint, wrapped ring included: a restarted run judges its next passage as the
+// uninterrupted run does.
 TEST(StateCodec, PassageWatchBalanceRecordReadsBack) {
   SimState s = grid_state(4, 3);
   for (int k = 0; k < BalanceDrift::kSamples + 17; ++k) s.passage.drift.record(1e-3 * k, std::sin(0.37 * k) * 1e-3 * k);
+  s.passage.best_pivot = 0.152683;
   const std::vector<uint8_t> bytes = encode_state(s);
   const SimState back = decode_state(bytes.data(), bytes.size());
+  EXPECT_EQ(back.passage.best_pivot, s.passage.best_pivot);
   std::vector<double> t0, b0, t1, b1;
   s.passage.drift.samples(t0, b0);
   back.passage.drift.samples(t1, b1);

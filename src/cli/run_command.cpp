@@ -304,8 +304,13 @@ int run_command(const RunOptions& requested) {
       emit_due_outputs();
       progress.update(sim.time(), sim.step_count());
     }
-    // the last state is always in the series
+    // the last state is always in the series, and in the VTK snapshots when N steps do not
+    // divide the run's
     if (last_row_time != sim.time()) write_row();
+    if (outputs.vtk && sim.step_count() % options.vtk_every != 0) {
+      sim.fill_snapshot(snapshot);
+      outputs.vtk->write(snapshot);
+    }
     if (exit_code == kExitOk) summary.status = "ok";
   } catch (const NumericalError& error) {
     fail("numerical_failure", kExitNumerical, std::string("numerical failure: ") + error.what());

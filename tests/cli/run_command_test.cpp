@@ -188,6 +188,23 @@ TEST(RunCommand, ScreenshotAfterTheEndOrWithoutItsTimeIsRefused) {
 }
 #endif
 
+// --vtk-every N: snapshots every N steps and the last state, like the rows of series.csv, when
+// N does not divide the run's steps (the pendulum: 50 steps, N = 20: steps 0, 20, 40 and 50).
+TEST(RunCommand, VtkSnapshotsEndWithTheLastState) {
+  const auto out = fresh_directory("vtk_last");
+  const auto r = run_child({"run", scene("pendulum.toml"), "--until", "0.05", "--vtk-every", "20", "--out",
+                            out.string(), "--quiet"},
+                           kLimit);
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const std::string pvd = read_text(out / "vtk" / "snapshots.pvd");
+  std::vector<double> times;
+  for (size_t at = pvd.find("timestep=\""); at != std::string::npos; at = pvd.find("timestep=\"", at + 1))
+    times.push_back(std::stod(pvd.substr(at + 10)));
+  ASSERT_EQ(times.size(), 4u) << pvd;
+  EXPECT_NEAR(times[2], 0.04, 1e-12);
+  EXPECT_NEAR(times.back(), 0.05, 1e-12);
+}
+
 // Stopping with a signal once `ready` holds: the run ends with 128 + the signal, closes its
 // rows, frames and movie, and summary.json says it was interrupted and counts what was written.
 std::filesystem::path expect_clean_interrupt(const std::string& name, int signal_number,

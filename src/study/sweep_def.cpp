@@ -114,6 +114,19 @@ SweepDef load_sweep(const std::string& path) {
 }
 
 std::vector<SweepRun> expand_sweep(const SweepDef& sweep) {
+  // the size of the grid, before a scene is read for each of its runs
+  double count = 1.0;
+  std::string product;
+  for (const SweepParameter& p : sweep.parameters) {
+    count *= static_cast<double>(p.values.size());
+    product += (product.empty() ? "" : " x ") + std::to_string(p.values.size());
+  }
+  if (count > kMaxSweepRuns) {
+    char text[160];
+    std::snprintf(text, sizeof text, "the grid has %.0f runs (%s values), more than %.0f; split the sweep", count,
+                  product.c_str(), kMaxSweepRuns);
+    throw InputError(sweep.parameters.back().where, text);
+  }
   std::vector<SweepRun> runs;
   const size_t axes = sweep.parameters.size();
   std::vector<size_t> at(axes, 0);

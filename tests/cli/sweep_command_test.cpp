@@ -122,6 +122,13 @@ struct BadSweep {
   std::string series = "\"probe.bob.x\"";
 };
 
+// Four hundred values, 1e-3 to 1.4e-3.
+std::string many_values() {
+  std::string out = "[";
+  for (int k = 0; k < 400; ++k) out += (k ? ", " : "") + std::to_string(1e-3 + 1e-6 * k);
+  return out + "]";
+}
+
 TEST(SweepCommand, BadSweepFilesExitTwoNamingFileLineAndColumn) {
   const std::vector<BadSweep> cases = {
       {"UnknownSceneKey", "[[parameter]]\nkey = \"body.bob.colour\"\nvalues = [1, 2]\n", ":9:10", "unknown key 'colour'"},
@@ -129,6 +136,11 @@ TEST(SweepCommand, BadSweepFilesExitTwoNamingFileLineAndColumn) {
       {"ValueTheSceneRefuses", "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3, -1.0]\n", ":9:10", "solver.dt"},
       {"NoParameters", "", ":1:1", "[[parameter]]"},
       // a column no run writes (a rigid-body quantity of a pendulum's probe, and a misspelling)
+      // 160,000 runs: refused before a scene is read for each
+      {"GridTooLarge",
+       "[[parameter]]\nkey = \"solver.dt\"\nvalues = " + many_values() +
+           "\n[[parameter]]\nkey = \"body.bob.mass\"\nvalues = " + many_values() + "\n",
+       ":12:10", "the grid has 160000 runs (400 x 400 values)"},
       {"SeriesColumnNoRunWrites", "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3]\n", ":6:10",
        "writes no series.csv column 'probe.bob.z'", "\"probe.bob.angle\", \"probe.bob.z\""},
   };

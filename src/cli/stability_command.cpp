@@ -1,7 +1,9 @@
 #include "cli/stability_command.h"
 
+#include <csignal>
 #include <cstdio>
 
+#include "cli/interrupt.h"
 #include "core/error.h"
 #include "io/child_process.h"
 #include "stability/stability_suite.h"
@@ -30,14 +32,22 @@ int stability_command(const StabilityOptions& options) {
   suite.program = options.program.empty() ? current_executable() : options.program;
   suite.out_dir = options.out_dir;
   suite.threads = options.threads;
+  // Ctrl-C or SIGTERM: the case under way is told to stop, no further case starts, and the
+  // table holds the cases that ended
+  catch_interrupts();
+  suite.interrupt = [] { return pending_interrupt(); };
 
   // one line per case as it finishes, then the table
   std::vector<CaseResult> results;
   int failures = 0;
-  for (size_t k = 0; k < cases.size(); ++k) {
+  for (size_t k = 0; k < cases.size() && pending_interrupt() == 0; ++k) {
     std::printf("[%2zu/%zu] %-40s ", k + 1, cases.size(), cases[k].name.c_str());
     std::fflush(stdout);
     CaseResult r = run_stability_case(cases[k], suite);
+    if (pending_interrupt() != 0) {
+      std::printf("interrupted\n");
+      break;
+    }
     std::printf("%-9s %6.2f s  %s%s\n", r.outcome.c_str(), r.run_seconds, r.as_expected ? "ok" : "NOT AS EXPECTED",
                 r.verdict.empty() ? "" : (": " + r.verdict).c_str());
     std::fflush(stdout);
@@ -49,6 +59,11 @@ int stability_command(const StabilityOptions& options) {
   std::printf("\n%s\n", stability_table_markdown(results).c_str());
   std::printf("%zu cases, %d not as expected; table in %s/stability.md and stability.csv\n", results.size(), failures,
               options.out_dir.c_str());
+  if (const int signal_number = pending_interrupt()) {
+    std::fprintf(stderr, "periflex: stability suite interrupted by %s after %zu of %zu cases\n",
+                 signal_number == SIGINT ? "SIGINT" : "SIGTERM", results.size(), cases.size());
+    return interrupt_exit_code(signal_number);
+  }
   return failures == 0 ? kExitOk : kExitOther;
 }
 

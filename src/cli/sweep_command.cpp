@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <sstream>
 #include <thread>
 
+#include "cli/interrupt.h"
 #include "core/error.h"
 #include "output/atomic_file.h"
 #include "io/child_process.h"
@@ -168,28 +170,34 @@ std::string collect(const fs::path& dir) {
 }
 
 // Runs every run a bounded number at once, each a child process with the sweep's limits;
-// returns how many failed.
+// returns how many failed. Ctrl-C or SIGTERM (cli/interrupt.h) is passed on to the runs under
+// way, which stop cleanly as a run does, and no further run starts.
 int run_locally(const SweepDef& sweep, const std::vector<SweepRun>& runs, const fs::path& out, int jobs,
                 bool quiet) {
   const std::string program = current_executable();
   ChildLimits limits;
   limits.timeout_seconds = sweep.timeout_seconds;
   limits.memory_bytes = sweep.memory_bytes;
+  limits.interrupt = [] { return pending_interrupt(); };
   std::atomic<size_t> next{0};
   std::atomic<int> failed{0};
   std::mutex print;
   auto worker = [&] {
-    for (size_t k = next++; k < runs.size(); k = next++) {
+    for (size_t k = next++; k < runs.size() && pending_interrupt() == 0; k = next++) {
       const fs::path folder = out / runs[k].folder;
       fs::create_directories(folder);
       const ChildResult result = run_child(run_argv(program, sweep, runs[k], folder), limits);
       std::ofstream((folder / "log.txt").string()) << result.output;
       const bool ok = result.started && result.signal == 0 && !result.timed_out && result.exit_code == 0;
-      if (!ok) ++failed;
+      if (!ok && !result.interrupted) ++failed;
       std::lock_guard<std::mutex> lock(print);
       if (!quiet || !ok) {
         std::printf("  %s %s (%.1f s)\n", runs[k].folder.c_str(),
-                    ok ? "ok" : result.timed_out ? "timed out" : result.signal ? "killed by a signal" : "failed",
+                    ok                    ? "ok"
+                    : result.interrupted  ? "interrupted"
+                    : result.timed_out    ? "timed out"
+                    : result.signal       ? "killed by a signal"
+                                          : "failed",
                     result.wall_seconds);
         std::fflush(stdout);
       }
@@ -253,8 +261,16 @@ int sweep_command(const SweepOptions& options) {
     }
     const int jobs = options.jobs > 0 ? options.jobs : sweep.jobs;
     if (!options.quiet) std::printf("sweep %s: %zu runs, %d at once\n", sweep.name.c_str(), runs.size(), jobs);
+    catch_interrupts();
     const int failed = run_locally(sweep, runs, out, jobs, options.quiet);
     std::printf("%s\n", collect(out).c_str());
+    if (const int signal_number = pending_interrupt()) {
+      std::fprintf(stderr,
+                   "periflex: sweep interrupted by %s: the runs under way stopped where they were (status "
+                   "'interrupted'), the rest did not start ('missing'); sweep.csv holds them all\n",
+                   signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+      return interrupt_exit_code(signal_number);
+    }
     if (failed > 0) std::printf("%d of %zu runs failed (their log.txt says why)\n", failed, runs.size());
     return failed > 0 ? kExitOther : kExitOk;
   } catch (const InputError& error) {

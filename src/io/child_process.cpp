@@ -158,17 +158,29 @@ ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& l
   close(pipe_fds[1]);
 
   // read until the pipe closes or the deadline passes
-  const auto deadline = start + std::chrono::duration<double>(limits.timeout_seconds);
+  auto deadline = start + std::chrono::duration<double>(limits.timeout_seconds);
+  // the caller's interrupt, passed on once; then the child has a grace period to stop
+  const auto pass_interrupt = [&] {
+    if (result.interrupted || !limits.interrupt) return;
+    const int signal_number = limits.interrupt();
+    if (signal_number == 0) return;
+    kill(-pid, signal_number);
+    result.interrupted = true;
+    const decltype(deadline) grace_end = Clock::now() + std::chrono::duration<double>(limits.interrupt_grace_seconds);
+    deadline = std::min(deadline, grace_end);
+  };
+  const double poll_ms = limits.interrupt ? 100.0 : 1000.0;
   char buffer[65536];
   bool open = true;
   while (open) {
+    pass_interrupt();
     const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
     if (left <= 0) {
       result.timed_out = true;
       break;
     }
     struct pollfd p {pipe_fds[0], POLLIN, 0};
-    const int ready = poll(&p, 1, static_cast<int>(std::min(left * 1000.0 + 1.0, 1000.0)));
+    const int ready = poll(&p, 1, static_cast<int>(std::min(left * 1000.0 + 1.0, poll_ms)));
     if (ready < 0 && errno != EINTR) break;
     if (ready <= 0) continue;
     const ssize_t n = read(pipe_fds[0], buffer, sizeof buffer);
@@ -185,6 +197,7 @@ ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& l
   while (true) {
     const pid_t done = waitpid(pid, &status, result.timed_out ? 0 : WNOHANG);
     if (done == pid) break;
+    pass_interrupt();
     if (done < 0 && errno != EINTR) break;
     if (Clock::now() >= deadline && !result.timed_out) {
       result.timed_out = true;

@@ -10,6 +10,7 @@
 
 #include <sys/types.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -20,12 +21,18 @@ struct ChildLimits {
   double memory_bytes = 4e9;          // address-space limit (RLIMIT_AS); <= 0: none
   std::vector<std::string> environment;  // extra "NAME=value" entries set in the child
   std::string working_directory;         // the child starts in this folder (empty: the caller's)
+  // Asked every tenth of a second while the child runs: a signal (SIGINT, SIGTERM) the caller
+  // received and passes on to the child's process group, once, or 0. The child then has
+  // interrupt_grace_seconds (within the timeout) to stop its own way before it is killed.
+  std::function<int()> interrupt;
+  double interrupt_grace_seconds = 30.0;
 };
 
 struct ChildResult {
   int exit_code = -1;        // when the child exited normally
   int signal = 0;            // when a signal ended it (SIGSEGV, SIGABRT, SIGKILL after a timeout)
   bool timed_out = false;
+  bool interrupted = false;  // the caller's interrupt was passed on to it
   bool started = false;      // false: fork or exec failed (output says why)
   double wall_seconds = 0.0;
   std::string output;        // stdout and stderr interleaved

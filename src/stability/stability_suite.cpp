@@ -110,6 +110,7 @@ CaseResult run_stability_case(const StabilityCase& c, const SuiteOptions& option
   limits.timeout_seconds = c.timeout_seconds;
   limits.memory_bytes = options.memory_bytes;
   limits.environment = {"OMP_NUM_THREADS=" + std::to_string(std::max(1, options.threads))};
+  limits.interrupt = options.interrupt;
 
   std::vector<std::string> argv = {options.program, c.command, scene};
   for (const auto& s : c.sets) {

@@ -6,6 +6,7 @@
 //   write_stability_table(results, "out/stability");   // stability.md + stability.csv
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,8 @@ struct SuiteOptions {
   std::string resource_root;    // where scenes/ is; empty: find_resource_root()
   int threads = 1;              // OMP_NUM_THREADS of each case (the suite runs on shared machines)
   double memory_bytes = 4e9;    // address-space limit of each case
+  // a signal the suite received, passed on to the case under way (ChildLimits::interrupt)
+  std::function<int()> interrupt;
 };
 
 // How a case ended, what it measured, and whether that is what the case expects.

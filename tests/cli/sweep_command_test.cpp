@@ -4,11 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <csignal>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "child_run.h"
 #include "run_program.h"
 
 namespace periflex::testing {
@@ -112,6 +115,49 @@ TEST(SweepCommand, JobsFileRunsUnderTheShellAndCollectGathersWhatRan) {
   ASSERT_EQ(csv.size(), 5u);
   EXPECT_EQ(csv[1].rfind("run_0001,0.001,1.0,missing,", 0), 0u) << csv[1];
   EXPECT_EQ(csv[3].rfind("run_0003,0.0007,1.0,ok,0,", 0), 0u) << csv[3];
+}
+
+// The command lines of the running processes, read from /proc.
+std::vector<std::string> process_command_lines() {
+  std::vector<std::string> lines;
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    std::ifstream in(entry.path() / "cmdline", std::ios::binary);
+    std::string line((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::replace(line.begin(), line.end(), '\0', ' ');
+    if (!line.empty()) lines.push_back(line);
+  }
+  return lines;
+}
+
+// SIGTERM (or a terminal's Ctrl-C) during a local sweep: the runs under way are told to stop,
+// stop cleanly (their summary.json says interrupted), none is left running, no further run
+// starts, and sweep.csv says which ran; the sweep exits 143. It used to die at once and leave its
+// runs going in the background.
+TEST(SweepCommand, SigtermStopsTheRunsUnderWayAndStartsNoMore) {
+  const fs::path dir = fresh_directory("sweep_sigterm");
+  const fs::path file = dir / "glass_sweep.toml", out = dir / "out";
+  std::ofstream(file) << "[sweep]\nscene = \"" << scene("glass_branching.toml") << "\"\njobs = 2\n"
+                      << kMemoryLine << "[[parameter]]\nkey = \"flex_body.plate.material.fracture_energy\"\n"
+                      << "values = [3.0, 3.8, 4.5, 5.0]\n";
+  Child sweep({"sweep", file.string(), "--out", out.string()});
+  // both first runs under way: their summary.json is written when they start
+  const bool running = sweep.wait_until(
+      [&] { return fs::exists(out / "run_0001" / "summary.json") && fs::exists(out / "run_0002" / "summary.json"); },
+      120);
+  ASSERT_TRUE(running) << "the runs did not start";
+  sweep.send(SIGTERM);
+  const ChildResult r = sweep.finish(120);
+  ASSERT_FALSE(r.timed_out);
+  EXPECT_EQ(r.exit_code, 143) << r.output;
+  EXPECT_NE(r.output.find("sweep interrupted by SIGTERM"), std::string::npos) << r.output;
+  for (const std::string& line : process_command_lines())
+    EXPECT_EQ(line.find(out.string()), std::string::npos) << "still running: " << line;
+  const std::vector<std::string> csv = lines_of(out / "sweep.csv");
+  ASSERT_EQ(csv.size(), 5u) << r.output;
+  EXPECT_EQ(csv[1].rfind("run_0001,3.0,interrupted,143,", 0), 0u) << csv[1];
+  EXPECT_EQ(csv[2].rfind("run_0002,3.8,interrupted,143,", 0), 0u) << csv[2];
+  EXPECT_EQ(csv[3].rfind("run_0003,4.5,missing,", 0), 0u) << csv[3];
+  EXPECT_FALSE(fs::exists(out / "run_0004")) << "a run started after the interrupt";
 }
 
 struct BadSweep {

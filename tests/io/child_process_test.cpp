@@ -1,12 +1,15 @@
 // Child processes (io/child_process.h): start_child hands the child the descriptors it is given,
 // puts it in a process group of its own and reports a program that cannot start; find_program
-// looks along PATH, and along the usual folders when PATH is unset.
+// looks along PATH, and along the usual folders when PATH is unset; run_child passes the caller's
+// interrupt on.
 #include "io/child_process.h"
 
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <string>
 
@@ -60,6 +63,34 @@ TEST(ChildProcess, FindProgramLooksAlongPathOrTheUsualFolders) {
   const std::string found = find_program("sh");
   if (saved) setenv("PATH", path.c_str(), 1);
   EXPECT_TRUE(found == "/usr/bin/sh" || found == "/bin/sh") << found;
+}
+
+// The caller's interrupt is passed on once: a child that handles it stops its own way (its exit
+// status and last words kept); one that ignores it is killed when the grace period ends, long
+// before its timeout.
+TEST(ChildProcess, InterruptIsPassedOnAndAChildThatIgnoresItIsKilledAfterTheGrace) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto after = [&start](double seconds) {
+    return [&start, seconds] {
+      return std::chrono::steady_clock::now() - start > std::chrono::duration<double>(seconds) ? SIGTERM : 0;
+    };
+  };
+  ChildLimits limits;
+  limits.timeout_seconds = 60.0;
+  limits.interrupt = after(0.3);
+  ChildResult r = run_child({"/bin/sh", "-c", "trap 'echo stopping; exit 7' TERM; while :; do sleep 0.05; done"}, limits);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_FALSE(r.timed_out);
+  EXPECT_EQ(r.exit_code, 7);
+  EXPECT_NE(r.output.find("stopping"), std::string::npos) << r.output;
+  EXPECT_LT(r.wall_seconds, 5.0);
+
+  limits.interrupt_grace_seconds = 0.5;
+  r = run_child({"/bin/sh", "-c", "trap '' TERM; while :; do sleep 0.05; done"}, limits);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_TRUE(r.timed_out);
+  EXPECT_EQ(r.signal, SIGKILL);
+  EXPECT_LT(r.wall_seconds, 10.0);
 }
 
 }  // namespace

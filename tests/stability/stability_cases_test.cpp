@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <csignal>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <regex>
 
 #include "io/child_process.h"
@@ -93,6 +96,31 @@ TEST(StabilityCommand, WritesMarkdownAndCsvTables) {
   EXPECT_TRUE(std::filesystem::exists(out + "/stability.md"));
   EXPECT_TRUE(std::filesystem::exists(out + "/stability.csv"));
   EXPECT_NE(r.output.find("| spring_verlet_10x_limit |"), std::string::npos) << r.output;
+}
+
+// SIGTERM (or Ctrl-C) during the suite: the case under way is told to stop and ends its own
+// way, no further case starts, the table holds what ended, and the suite exits 143. It used to
+// die at once and leave the case's run going in the background.
+TEST(StabilityCommand, SigtermStopsTheCaseUnderWayAndStartsNoMore) {
+  const std::string out = (std::filesystem::current_path() / "stability_sigterm_out").string();
+  std::filesystem::remove_all(out);
+  ChildLimits limits;
+  limits.timeout_seconds = 300;
+  // the signal once the first long run has started (its folder made)
+  limits.interrupt = [&out] {
+    return std::filesystem::exists(out + "/long_pendulum_1e6_steps/summary.json") ? SIGTERM : 0;
+  };
+  const auto r = run_child({PERIFLEX_BINARY, "stability", "--case", "long_pendulum", "--out", out}, limits);
+  EXPECT_TRUE(r.interrupted);
+  EXPECT_FALSE(r.timed_out) << r.output;
+  EXPECT_EQ(r.exit_code, 143) << r.output;
+  EXPECT_NE(r.output.find("stability suite interrupted by SIGTERM after 0 of 2 cases"), std::string::npos) << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/long_pendulum_verlet_1e6_steps")) << "a case started after the signal";
+  EXPECT_TRUE(std::filesystem::exists(out + "/stability.md"));
+  // the case's own run stopped cleanly: its summary says so
+  std::ifstream summary(out + "/long_pendulum_1e6_steps/summary.json");
+  const std::string text((std::istreambuf_iterator<char>(summary)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("\"interrupted\""), std::string::npos) << text;
 }
 
 }  // namespace

@@ -3,7 +3,8 @@
 // opened after `&&` left out), in the order a reader meets them (README first, then the docs by
 // name) from one working folder holding the scenes, so that a command may use what an earlier
 // one wrote. Each must exit 0: a documented command that fails is a defect of the program or of
-// its documentation. Commands that draw need the off-screen renderer (and --movie ffmpeg).
+// its documentation. Commands that draw need the off-screen renderer (and --movie ffmpeg). The
+// window's commands (`gui`, `play`) are left to the tests of tests/app, which run it under Xvfb.
 #include <gtest/gtest.h>
 
 #include <algorithm>

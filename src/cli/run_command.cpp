@@ -253,8 +253,13 @@ int run_command(const RunOptions& requested) {
   };
   const double worker_cpu_start = omp_worker_cpu_seconds();
   try {
-    series = std::make_unique<SeriesWriter>(out_dir + "/series.csv", sim.probe_columns(), has_particles,
-                                            !sim.scene().contacts.empty());
+    // a run restarted into its own folder keeps the rows before the checkpoint: its series.csv
+    // is then the whole run's
+    const std::string series_path = out_dir + "/series.csv";
+    const std::string earlier_rows =
+        restart ? series_rows_before(series_path, series_columns(sim), restart_header.time) : std::string();
+    series = std::make_unique<SeriesWriter>(series_path, sim.probe_columns(), has_particles,
+                                            !sim.scene().contacts.empty(), earlier_rows);
     // rendering and VTK output are optional; the sink checks its own preconditions first
     if (options.render || options.snapshot_at) {
       sim.fill_snapshot(snapshot);

@@ -3,10 +3,12 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 #include "output/series_row.h"
@@ -14,7 +16,7 @@
 namespace periflex {
 
 SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns,
-                           bool with_damage, bool with_contact)
+                           bool with_damage, bool with_contact, const std::string& earlier_rows)
     : path_(path), with_damage_(with_damage), with_contact_(with_contact) {
   columns_ = series_columns(probe_columns, with_damage_, with_contact_);
 
@@ -23,7 +25,37 @@ SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::strin
   std::string header;
   for (size_t k = 0; k < columns_.size(); ++k) header += (k ? "," : "") + columns_[k];
   header += '\n';
-  write_all(header);
+  write_all(header + earlier_rows);
+}
+
+std::string series_rows_before(const std::string& path, const std::vector<std::string>& columns, double time) {
+  std::ifstream in(path, std::ios::binary);
+  std::string header;
+  if (!in || !std::getline(in, header)) return "";
+  std::string expected;
+  for (size_t k = 0; k < columns.size(); ++k) expected += (k ? "," : "") + columns[k];
+  if (header != expected) return "";
+  // a whole row: as many numbers as the header has columns, ended by a line break
+  const auto whole_row = [&columns](const std::string& line, double& t) {
+    const char* at = line.data();
+    const char* end = line.data() + line.size();
+    for (size_t k = 0; k < columns.size(); ++k) {
+      double value = 0.0;
+      const auto parsed = std::from_chars(at, end, value);
+      if (parsed.ec != std::errc() || parsed.ptr != (k + 1 < columns.size() ? std::find(at, end, ',') : end))
+        return false;
+      if (k == 0) t = value;
+      at = parsed.ptr + 1;
+    }
+    return true;
+  };
+  std::string kept, line;
+  double t = 0.0;
+  while (std::getline(in, line) && !in.eof() && whole_row(line, t) && t < time) {
+    kept += line;
+    kept += '\n';
+  }
+  return kept;
 }
 
 SeriesWriter::~SeriesWriter() {

@@ -12,10 +12,11 @@ namespace periflex {
 
 class SeriesWriter {
  public:
-  // Opens `path` and writes the header. Damage columns only when the scene has particles,
-  // contact columns (contact_force_total, contact_count) only when it declares [[contact]].
+  // Opens `path` and writes the header, then `earlier_rows` (whole lines a restarted run keeps,
+  // series_rows_before). Damage columns only when the scene has particles, contact columns
+  // (contact_force_total, contact_count) only when it declares [[contact]].
   SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns, bool with_damage,
-               bool with_contact = false);
+               bool with_contact = false, const std::string& earlier_rows = "");
   ~SeriesWriter();
   SeriesWriter(const SeriesWriter&) = delete;
   SeriesWriter& operator=(const SeriesWriter&) = delete;
@@ -39,5 +40,11 @@ class SeriesWriter {
   std::string line_;
   std::vector<double> values_;
 };
+
+// The rows of the series.csv at `path` before `time`, as whole lines, when its header is
+// `columns`: what a run restarted into its own folder keeps, so that its series.csv holds the
+// whole run. Empty when there is no such file, its header differs (another scene's), or no row
+// comes before `time`; a line cut short ends the rows kept.
+std::string series_rows_before(const std::string& path, const std::vector<std::string>& columns, double time);
 
 }  // namespace periflex

@@ -3,7 +3,8 @@
 // rigid mechanism, the notched plate while it cracks, the glass plate at one and two threads,
 // with steps that do not divide T); files of another scene, version or format, truncated or
 // damaged ones are refused with exit 2 naming the file and the reason; an interrupted run leaves
-// only whole checkpoints, one of them the state it reached, from which it resumes.
+// only whole checkpoints, one of them the state it reached, from which it resumes (into its own
+// folder: a series.csv of the whole run).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -233,6 +234,14 @@ TEST(Checkpoint, InterruptedRunLeavesWholeCheckpointsAndResumesFromWhereItStoppe
   for (size_t k = 1; k < whole.size(); ++k)
     if (row_time(whole[k]) >= from) tail.push_back(whole[k]);
   EXPECT_EQ(std::vector<std::string>(rows.begin() + 1, rows.end()), tail);
+
+  // resumed into its own folder, its series.csv is the whole run's: the rows before the
+  // interruption kept (the row of the state it stopped in dropped), the rest continued
+  args = plate;
+  args.insert(args.end(), {"--out", (dir / "stopped").string(), "--restart", interrupted.string()});
+  const auto in_place = run_child(args, 120);
+  ASSERT_EQ(in_place.exit_code, 0) << in_place.output;
+  EXPECT_EQ(lines_of(dir / "stopped" / "series.csv"), whole);
 }
 
 }  // namespace

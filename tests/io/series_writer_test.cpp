@@ -90,5 +90,24 @@ TEST(SeriesWriter, ValuesReadBackAreTheSameDoubles) {
   }
 }
 
+// What a run restarted into its own folder keeps of its series.csv: the whole rows before the
+// restart time, and nothing from a file of other columns.
+TEST(SeriesWriter, RowsBeforeARestartAreTheWholeRowsBeforeItsTime) {
+  const std::string path = (std::filesystem::temp_directory_path() / "periflex_rows_before.csv").string();
+  const std::vector<std::string> columns = {"t", "kinetic"};
+  std::ofstream(path) << "t,kinetic\n0,1\n0.5,2\n1,3\n1.5,4\n";
+  EXPECT_EQ(series_rows_before(path, columns, 1.0), "0,1\n0.5,2\n");  // the row at 1 is written again
+  EXPECT_EQ(series_rows_before(path, columns, 1.2), "0,1\n0.5,2\n1,3\n");
+  EXPECT_EQ(series_rows_before(path, columns, 0.0), "");
+  EXPECT_EQ(series_rows_before(path, {"t", "potential_gravity"}, 1.2), "") << "another scene's file";
+  // a run killed mid-row: the cut row and what follows are not kept
+  std::ofstream(path) << "t,kinetic\n0,1\n0.5,2\n1,\n";
+  EXPECT_EQ(series_rows_before(path, columns, 9.0), "0,1\n0.5,2\n");
+  std::ofstream(path) << "t,kinetic\n0,1\n0.5,2";
+  EXPECT_EQ(series_rows_before(path, columns, 9.0), "0,1\n");
+  std::filesystem::remove(path);
+  EXPECT_EQ(series_rows_before(path, columns, 9.0), "") << "no file";
+}
+
 }  // namespace
 }  // namespace periflex

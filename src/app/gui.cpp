@@ -48,13 +48,13 @@ int run_gui(const GuiOptions& options) {
                                            log);
     }
   } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "periflex: error: %s\n", e.what());
     return kExitBadInput;
   } catch (const NumericalError& e) {
-    std::fprintf(stderr, "numerical error: %s\n", e.what());
+    std::fprintf(stderr, "periflex: numerical failure: %s\n", e.what());
     return kExitNumerical;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "periflex: error: %s\n", e.what());
     return kExitOther;
   }
 
@@ -62,7 +62,7 @@ int run_gui(const GuiOptions& options) {
   glfwSetErrorCallback(glfw_error);
   if (!glfwInit()) {
     std::fprintf(stderr,
-                 "error: cannot open a window (no display?). On a machine without one, run under "
+                 "periflex: error: cannot open a window (no display?). On a machine without one, run under "
                  "xvfb-run -a -s \"-screen 0 1280x800x24\", or record with `periflex run --frames`.\n");
     return kExitOther;
   }
@@ -77,7 +77,7 @@ int run_gui(const GuiOptions& options) {
   GLFWwindow* window = glfwCreateWindow(std::max(320, options.width), std::max(240, options.height),
                                         title.c_str(), nullptr, nullptr);
   if (!window) {
-    std::fprintf(stderr, "error: cannot create an OpenGL 3.3 core window\n");
+    std::fprintf(stderr, "periflex: error: cannot create an OpenGL 3.3 core window\n");
     glfwTerminate();
     return kExitOther;
   }
@@ -104,7 +104,7 @@ int run_gui(const GuiOptions& options) {
     worker->start(!playback, speed);
     code = app.run();
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
+    std::fprintf(stderr, "periflex: error: %s\n", e.what());
     code = kExitOther;
   }
   worker->stop();

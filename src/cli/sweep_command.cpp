@@ -79,10 +79,47 @@ std::string csv_field(const std::string& text) {
   return out + "\"";
 }
 
+// The plan in a sweep folder's sweep.json, as --collect reads it back.
+struct SweepPlan {
+  std::vector<std::string> keys, series;
+  struct Run {
+    std::string folder;
+    std::vector<std::string> values;  // one per key
+  };
+  std::vector<Run> runs;
+};
+
+// Reads sweep.json; throws InputError naming it when it is missing or not a plan this program
+// writes (run folders are plain names inside the sweep folder).
+SweepPlan read_plan(const fs::path& dir) {
+  const SourceLocation where{(dir / "sweep.json").string(), 0, 0, ""};
+  std::ifstream in(dir / "sweep.json");
+  if (!in) throw InputError(where, "not a sweep folder: no sweep.json (written by periflex sweep)");
+  SweepPlan plan;
+  try {
+    nlohmann::json json;
+    in >> json;
+    plan.keys = json.value("parameters", std::vector<std::string>{});
+    plan.series = json.value("series", std::vector<std::string>{});
+    for (const auto& run : json.at("runs")) {
+      SweepPlan::Run r{run.at("folder").get<std::string>(), run.at("values").get<std::vector<std::string>>()};
+      if (r.folder.empty() || r.folder == "." || r.folder == ".." || r.folder.find('/') != std::string::npos)
+        throw InputError(where, "run folder '" + r.folder + "' is not a plain folder name inside the sweep folder");
+      if (r.values.size() != plan.keys.size())
+        throw InputError(where, "run '" + r.folder + "' has " + std::to_string(r.values.size()) + " values for " +
+                                    std::to_string(plan.keys.size()) + " parameters");
+      plan.runs.push_back(std::move(r));
+    }
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(where, std::string("not a sweep plan written by periflex sweep (") + e.what() + ")");
+  }
+  return plan;
+}
+
 // sweep.png with gnuplot when it is installed: the first series column against the first
 // parameter, one curve per value of the second. Returns what it did, for the user.
 std::string plot(const fs::path& dir, const std::vector<std::string>& keys, const std::vector<std::string>& series,
-                 const nlohmann::json& runs, size_t figures) {
+                 const std::vector<SweepPlan::Run>& runs, size_t figures) {
   if (series.empty() || keys.empty()) return "no plot: the sweep names no series column";
   const std::string gnuplot = find_program("gnuplot");
   const fs::path png = fs::absolute(dir / "sweep.png"), csv = fs::absolute(dir / "sweep.csv");
@@ -96,7 +133,7 @@ std::string plot(const fs::path& dir, const std::vector<std::string>& keys, cons
   } else {
     std::vector<std::string> values;
     for (const auto& run : runs) {
-      const std::string v = run["values"][1];
+      const std::string& v = run.values[1];
       if (std::find(values.begin(), values.end(), v) == values.end()) values.push_back(v);
     }
     gp << "plot";
@@ -118,17 +155,9 @@ std::string plot(const fs::path& dir, const std::vector<std::string>& keys, cons
 // Gathers every run of the folder into sweep.csv (and sweep.png); returns what it wrote. Throws InputError when the
 // folder holds no sweep.json.
 std::string collect(const fs::path& dir) {
-  std::ifstream in(dir / "sweep.json");
-  if (!in) throw InputError(SourceLocation{(dir / "sweep.json").string(), 0, 0, ""},
-                            "not a sweep folder: no sweep.json (written by periflex sweep)");
-  nlohmann::json plan;
-  try {
-    in >> plan;
-  } catch (const nlohmann::json::exception& e) {
-    throw InputError(SourceLocation{(dir / "sweep.json").string(), 0, 0, ""}, e.what());
-  }
-  const std::vector<std::string> keys = plan.value("parameters", std::vector<std::string>{});
-  const std::vector<std::string> series = plan.value("series", std::vector<std::string>{});
+  const SweepPlan plan = read_plan(dir);
+  const std::vector<std::string>& keys = plan.keys;
+  const std::vector<std::string>& series = plan.series;
   const char* figures[] = {"status", "exit_code", "simulated_time", "steps", "wall_time", "solver_cpu_time"};
   std::ostringstream out;
   out << "run";
@@ -136,24 +165,26 @@ std::string collect(const fs::path& dir) {
   for (const char* f : figures) out << ',' << f;
   for (const std::string& s : series) out << ',' << csv_field(s);
   out << '\n';
-  for (const auto& run : plan["runs"]) {
-    const std::string folder = run["folder"];
+  for (const SweepPlan::Run& run : plan.runs) {
+    const std::string& folder = run.folder;
     out << folder;
-    for (const auto& v : run["values"]) out << ',' << csv_field(v.get<std::string>());
-    // the run's summary: a run that never wrote one is "missing"
+    for (const std::string& v : run.values) out << ',' << csv_field(v);
+    // the run's summary: a run that never wrote one is "missing", one that cannot be read
+    // (damaged by hand or by a full disk) "unreadable"
     nlohmann::json summary;
     std::ifstream s(dir / folder / "summary.json");
     bool read = false;
     if (s) {
       try {
         s >> summary;
-        read = true;
+        read = summary.is_object();
       } catch (const nlohmann::json::exception&) {
       }
     }
+    const char* unread = s ? "unreadable" : "missing";
     for (const char* f : figures) {
       out << ',';
-      if (!read) out << (std::string(f) == "status" ? "missing" : "");
+      if (!read) out << (std::string(f) == "status" ? unread : "");
       else if (summary.contains(f)) out << csv_field(summary[f].is_string() ? summary[f].get<std::string>() : summary[f].dump());
     }
     const auto row = last_row(dir / folder / "series.csv");
@@ -166,7 +197,7 @@ std::string collect(const fs::path& dir) {
   }
   const std::string path = (dir / "sweep.csv").string();
   write_file_atomically(path, out.str());
-  return "wrote " + path + "\n" + plot(dir, keys, series, plan["runs"], std::size(figures));
+  return "wrote " + path + "\n" + plot(dir, keys, series, plan.runs, std::size(figures));
 }
 
 // Runs every run a bounded number at once, each a child process with the sweep's limits;

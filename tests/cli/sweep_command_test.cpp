@@ -115,6 +115,10 @@ TEST(SweepCommand, JobsFileRunsUnderTheShellAndCollectGathersWhatRan) {
   ASSERT_EQ(csv.size(), 5u);
   EXPECT_EQ(csv[1].rfind("run_0001,0.001,1.0,missing,", 0), 0u) << csv[1];
   EXPECT_EQ(csv[3].rfind("run_0003,0.0007,1.0,ok,0,", 0), 0u) << csv[3];
+  // a summary damaged since is told apart from one never written
+  std::ofstream(out / "run_0003" / "summary.json") << "{\"status\": \"ok\", \"steps";
+  ASSERT_EQ(run_periflex("sweep --collect " + out.string()).exit_code, 0);
+  EXPECT_EQ(lines_of(out / "sweep.csv")[3].rfind("run_0003,0.0007,1.0,unreadable,", 0), 0u);
 }
 
 // The command lines of the running processes, read from /proc.
@@ -199,10 +203,16 @@ TEST(SweepCommand, BadSweepFilesExitTwoNamingFileLineAndColumn) {
     EXPECT_NE(r.output.find(c.words), std::string::npos) << c.name << ": " << r.output;
     EXPECT_FALSE(fs::exists(dir / "out" / "run_0001")) << c.name;
   }
-  // --collect of a folder that is no sweep
-  const ProgramResult r = run_periflex("sweep --collect " + fresh_directory("sweep_bad_collect").string());
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  EXPECT_NE(r.output.find("sweep.json"), std::string::npos) << r.output;
+  // --collect of a folder that is no sweep, or whose plan is not one periflex writes: exit 2
+  // naming sweep.json (a plan of the wrong shape used to end with a JSON library error, exit 1)
+  const fs::path bad = fresh_directory("sweep_bad_collect");
+  for (const char* plan : {"", "{\"runs\": 5}", "{\"runs\": [{\"folder\": \"../..\", \"values\": []}]}",
+                           "{\"parameters\": [\"a\"], \"runs\": [{\"folder\": \"r\", \"values\": []}]}"}) {
+    if (*plan) std::ofstream(bad / "sweep.json") << plan;
+    const ProgramResult r = run_periflex("sweep --collect " + bad.string());
+    EXPECT_EQ(r.exit_code, 2) << plan << ": " << r.output;
+    EXPECT_NE(r.output.find("sweep.json: "), std::string::npos) << plan << ": " << r.output;
+  }
 }
 
 }  // namespace

@@ -152,6 +152,24 @@ std::string plot(const fs::path& dir, const std::vector<std::string>& keys, cons
   return "wrote " + png.string();
 }
 
+// Reads a run's summary.json into `summary`; returns "" when it is this run's, or why it is not:
+// "missing" (never written), "unreadable" (damaged by hand or by a full disk), "stale" (its --set
+// values are not `sets`: the folder holds a run of another sweep written into the same folder).
+std::string read_run_summary(const fs::path& file, const std::vector<std::string>& sets, nlohmann::json& summary) {
+  std::ifstream in(file);
+  if (!in) return "missing";
+  try {
+    in >> summary;
+  } catch (const nlohmann::json::exception&) {
+    return "unreadable";
+  }
+  if (!summary.is_object()) return "unreadable";
+  const nlohmann::json& given = summary.contains("set") ? summary["set"] : nlohmann::json::array();
+  for (const std::string& set : sets)
+    if (!given.is_array() || std::find(given.begin(), given.end(), set) == given.end()) return "stale";
+  return "";
+}
+
 // Gathers every run of the folder into sweep.csv (and sweep.png); returns what it wrote. Throws InputError when the
 // folder holds no sweep.json.
 std::string collect(const fs::path& dir) {
@@ -169,25 +187,18 @@ std::string collect(const fs::path& dir) {
     const std::string& folder = run.folder;
     out << folder;
     for (const std::string& v : run.values) out << ',' << csv_field(v);
-    // the run's summary: a run that never wrote one is "missing", one that cannot be read
-    // (damaged by hand or by a full disk) "unreadable"
+    std::vector<std::string> sets;
+    for (size_t k = 0; k < keys.size(); ++k) sets.push_back(keys[k] + "=" + run.values[k]);
     nlohmann::json summary;
-    std::ifstream s(dir / folder / "summary.json");
-    bool read = false;
-    if (s) {
-      try {
-        s >> summary;
-        read = summary.is_object();
-      } catch (const nlohmann::json::exception&) {
-      }
-    }
-    const char* unread = s ? "unreadable" : "missing";
+    const std::string unread = read_run_summary(dir / folder / "summary.json", sets, summary);
     for (const char* f : figures) {
       out << ',';
-      if (!read) out << (std::string(f) == "status" ? unread : "");
+      if (!unread.empty()) out << (std::string(f) == "status" ? unread : "");
       else if (summary.contains(f)) out << csv_field(summary[f].is_string() ? summary[f].get<std::string>() : summary[f].dump());
     }
-    const auto row = last_row(dir / folder / "series.csv");
+    // a run that says nothing of itself gives no figures
+    const auto row = unread.empty() ? last_row(dir / folder / "series.csv")
+                                    : std::vector<std::pair<std::string, std::string>>{};
     for (const std::string& name : series) {
       out << ',';
       for (const auto& [column, value] : row)

@@ -115,6 +115,21 @@ TEST(SweepCommand, JobsFileRunsUnderTheShellAndCollectGathersWhatRan) {
   ASSERT_EQ(csv.size(), 5u);
   EXPECT_EQ(csv[1].rfind("run_0001,0.001,1.0,missing,", 0), 0u) << csv[1];
   EXPECT_EQ(csv[3].rfind("run_0003,0.0007,1.0,ok,0,", 0), 0u) << csv[3];
+  // another grid written into the same folder: the run left there is of other values, and says
+  // so instead of passing for the new grid's run_0003
+  const std::string other_grid =
+      "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3, 7e-4]\n"
+      "[[parameter]]\nkey = \"body.bob.mass\"\nvalues = [1.5, 2.5]\n";
+  ASSERT_EQ(run_periflex("sweep " + write_sweep(dir, other_grid).string() + " --out " + out.string() +
+                         " --jobs-file " + jobs.string())
+                .exit_code,
+            0);
+  ASSERT_EQ(run_periflex("sweep --collect " + out.string()).exit_code, 0);
+  EXPECT_EQ(lines_of(out / "sweep.csv")[3].rfind("run_0003,0.0007,1.5,stale,,", 0), 0u);
+  ASSERT_EQ(run_periflex("sweep " + write_sweep(dir, kGrid).string() + " --out " + out.string() + " --jobs-file " +
+                         jobs.string())
+                .exit_code,
+            0);
   // a summary damaged since is told apart from one never written
   std::ofstream(out / "run_0003" / "summary.json") << "{\"status\": \"ok\", \"steps";
   ASSERT_EQ(run_periflex("sweep --collect " + out.string()).exit_code, 0);

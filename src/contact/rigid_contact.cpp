@@ -222,4 +222,11 @@ double RigidContact::critical_time_step() const {
   return damped_step(std::sqrt(2.0 * step_mass_ / stiffness_), zeta_);
 }
 
+bool RigidContact::add_coupling(const Eigen::VectorXd&, SparsityPattern& pattern) const {
+  const std::vector<int> both = {3 * i_.body, 3 * i_.body + 1, 3 * i_.body + 2,
+                                 3 * j_.body, 3 * j_.body + 1, 3 * j_.body + 2};
+  pattern.add_block(both, both);
+  return true;
+}
+
 }  // namespace periflex

@@ -43,6 +43,9 @@ class RigidContact final : public ContactElement {
   double critical_time_step() const override;
   void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                       std::vector<ContactPoint>& out) const override;
+  // The forces on both bodies move with both bodies' coordinates: the six are coupled whether
+  // the shapes touch or not, so the pattern holds at any iterate.
+  bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
 
  private:
   // A point of a shape and the radius of its rounding, body-fixed.

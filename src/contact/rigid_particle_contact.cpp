@@ -152,4 +152,29 @@ double RigidParticleContact::critical_time_step() const {
   return 1.0 / std::sqrt(bonds + 1.0 / (contact * contact));
 }
 
+bool RigidParticleContact::add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const {
+  const Vec2 r(q[3 * body_], q[3 * body_ + 1]);
+  const Mat2 a_t = rotation(q[3 * body_ + 2]).transpose();
+  const std::vector<int> body = {3 * body_, 3 * body_ + 1, 3 * body_ + 2};
+  pattern.add_block(body, body);
+  std::vector<int> particle(2);
+  for (size_t i = 0; i < mass_.size(); ++i) {
+    if (excluded_[i]) continue;
+    const int x = offset_ + 2 * static_cast<int>(i);
+    const Vec2 local = a_t * (Vec2(q[x], q[x + 1]) - r);
+    bool near = false;
+    for (size_t k = 0; k < shapes_.size() && !near; ++k) {
+      const double reach = bound_radius_[k] + 2.0 * margin_;
+      near = (local - bound_centre_[k]).squaredNorm() <= reach * reach &&
+             signed_distance(shapes_[k], local).distance < 2.0 * margin_;
+    }
+    if (!near) continue;
+    particle = {x, x + 1};
+    pattern.add_block(particle, particle);
+    pattern.add_block(particle, body);
+    pattern.add_block(body, particle);
+  }
+  return true;
+}
+
 }  // namespace periflex

@@ -35,6 +35,11 @@ class RigidParticleContact final : public ContactElement {
   double critical_time_step() const override;
   void collect_points(const Eigen::VectorXd& q, const Eigen::VectorXd& qd,
                       std::vector<ContactPoint>& out) const override;
+  // The body's coordinates with those of every particle nearer a shape than twice the margin:
+  // the particles in contact, and those a Newton iterate may bring into it within a step (the
+  // pattern is taken again at each new tangent). Every such particle's columns share the body's
+  // rows, so each takes a colour of its own: the band is kept to one margin.
+  bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
 
  private:
   // What one pass over the particles adds up.

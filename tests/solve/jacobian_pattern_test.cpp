@@ -105,7 +105,9 @@ long missing_entries(const SparsityPattern& model, const SparsityPattern& found)
 
 // Scenes of the three kinds of constrained groups: grips turned by drivers (determined by the
 // constraints alone), a flexible rod in a mechanism with a degree of freedom (the forces enter
-// the constraint solve), and state-based plates (couplings two bonds deep).
+// the constraint solve), and state-based plates (couplings two bonds deep); and the contacts: the
+// hammer's beam resting on its rollers at the start (rigid bodies against particles, and rigid
+// bodies against each other), its particles against each other.
 struct PatternCase {
   const char* name;
   const char* scene;
@@ -129,7 +131,8 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, ModelPattern,
     ::testing::Values(PatternCase{"DrivenGrips", "notched_plate.toml", {"flex_body.plate.grid_spacing=2e-3"}},
                       PatternCase{"FlexibleRodInAMechanism", "flexible_slider_crank.toml", {}},
-                      PatternCase{"StateBasedPlates", "notched_plate_models.toml", {}}),
+                      PatternCase{"StateBasedPlates", "notched_plate_models.toml", {}},
+                      PatternCase{"Contacts", "hammer.toml", {}}),
     [](const ::testing::TestParamInfo<PatternCase>& param) { return std::string(param.param.name); });
 
 // Force evaluations of the first HHT step of the notched plate at spacing dx.

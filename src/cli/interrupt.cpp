@@ -28,4 +28,6 @@ int pending_interrupt() { return g_signal; }
 
 int interrupt_exit_code(int signal_number) { return 128 + signal_number; }
 
+const char* interrupt_name(int signal_number) { return signal_number == SIGINT ? "SIGINT" : "SIGTERM"; }
+
 }  // namespace periflex

@@ -11,5 +11,7 @@ void catch_interrupts();
 int pending_interrupt();
 // The conventional exit status after a signal: 128 + its number (130 for SIGINT, 143 for SIGTERM).
 int interrupt_exit_code(int signal_number);
+// The signal's name for messages: "SIGINT" or "SIGTERM".
+const char* interrupt_name(int signal_number);
 
 }  // namespace periflex

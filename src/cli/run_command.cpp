@@ -294,7 +294,7 @@ int run_command(const RunOptions& requested) {
         const std::string kept =
             checkpointing ? "; the state is kept in " + write_checkpoint_now(interrupted_file_name(sim.time())) : "";
         fail("interrupted", interrupt_exit_code(signal_number),
-             std::string("interrupted by ") + (signal_number == SIGINT ? "SIGINT" : "SIGTERM") + " at t = " +
+             std::string("interrupted by ") + interrupt_name(signal_number) + " at t = " +
                  format_number(sim.time()) + " s" + kept);
         break;
       }

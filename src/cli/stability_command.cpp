@@ -1,6 +1,5 @@
 #include "cli/stability_command.h"
 
-#include <csignal>
 #include <cstdio>
 
 #include "cli/interrupt.h"
@@ -61,7 +60,7 @@ int stability_command(const StabilityOptions& options) {
               options.out_dir.c_str());
   if (const int signal_number = pending_interrupt()) {
     std::fprintf(stderr, "periflex: stability suite interrupted by %s after %zu of %zu cases\n",
-                 signal_number == SIGINT ? "SIGINT" : "SIGTERM", results.size(), cases.size());
+                 interrupt_name(signal_number), results.size(), cases.size());
     return interrupt_exit_code(signal_number);
   }
   return failures == 0 ? kExitOk : kExitOther;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -310,7 +309,7 @@ int sweep_command(const SweepOptions& options) {
       std::fprintf(stderr,
                    "periflex: sweep interrupted by %s: the runs under way stopped where they were (status "
                    "'interrupted'), the rest did not start ('missing'); sweep.csv holds them all\n",
-                   signal_number == SIGINT ? "SIGINT" : "SIGTERM");
+                   interrupt_name(signal_number));
       return interrupt_exit_code(signal_number);
     }
     if (failed > 0) std::printf("%d of %zu runs failed (their log.txt says why)\n", failed, runs.size());

@@ -15,6 +15,17 @@
 
 namespace periflex {
 
+namespace {
+
+// The header line of series.csv: the column names, comma-separated.
+std::string header_line(const std::vector<std::string>& columns) {
+  std::string header;
+  for (size_t k = 0; k < columns.size(); ++k) header += (k ? "," : "") + columns[k];
+  return header;
+}
+
+}  // namespace
+
 SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::string>& probe_columns,
                            bool with_damage, bool with_contact, const std::string& earlier_rows)
     : path_(path), with_damage_(with_damage), with_contact_(with_contact) {
@@ -22,19 +33,14 @@ SeriesWriter::SeriesWriter(const std::string& path, const std::vector<std::strin
 
   fd_ = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
   if (fd_ < 0) throw std::runtime_error("cannot write " + path + ": " + std::strerror(errno));
-  std::string header;
-  for (size_t k = 0; k < columns_.size(); ++k) header += (k ? "," : "") + columns_[k];
-  header += '\n';
-  write_all(header + earlier_rows);
+  write_all(header_line(columns_) + '\n' + earlier_rows);
 }
 
 std::string series_rows_before(const std::string& path, const std::vector<std::string>& columns, double time) {
   std::ifstream in(path, std::ios::binary);
   std::string header;
   if (!in || !std::getline(in, header)) return "";
-  std::string expected;
-  for (size_t k = 0; k < columns.size(); ++k) expected += (k ? "," : "") + columns[k];
-  if (header != expected) return "";
+  if (header != header_line(columns)) return "";
   // a whole row: as many numbers as the header has columns, ended by a line break
   const auto whole_row = [&columns](const std::string& line, double& t) {
     const char* at = line.data();

@@ -62,8 +62,13 @@ class RecorderFrameSink : public FrameSink {
   }
 
   FrameStats finish() override {
-    const RecorderStats recorded = recorder_.finish();
     FrameStats stats;
+    try {
+      recorder_.finish();
+    } catch (const std::exception& e) {
+      stats.error = e.what();
+    }
+    const RecorderStats recorded = recorder_.stats();
     stats.frames = recorded.frames;
     stats.render_seconds = recorded.draw_seconds;
     stats.encode_seconds = recorded.png_seconds + recorded.movie_seconds;

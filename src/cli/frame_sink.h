@@ -20,6 +20,7 @@ struct FrameStats {
   double submit_seconds = 0.0;  // what the solver's thread spent handing snapshots over
   bool screenshot_written = false;
   std::string where;            // frames directory / movie / screenshot written
+  std::string error;            // why the frames could not all be written (frames: those that were)
 };
 
 class FrameSink {
@@ -33,7 +34,7 @@ class FrameSink {
   // order with the snapshots.
   virtual void add_plot_row(std::shared_ptr<const std::vector<std::string>> columns, std::vector<double> row,
                             long step) = 0;
-  // Waits for every frame to be written. Throws std::runtime_error on failure.
+  // Waits for every frame to be written. A failure is told in FrameStats::error, not thrown.
   virtual FrameStats finish() = 0;
 };
 

@@ -22,12 +22,18 @@ void catch_interrupts() {
   action.sa_flags = SA_RESETHAND | SA_RESTART;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  // a closed terminal (SIGHUP) stops the run the same way, unless the run was started to outlive
+  // its terminal (nohup, or a shell's `trap '' HUP`), which leaves the signal ignored
+  struct sigaction hangup {};
+  if (sigaction(SIGHUP, nullptr, &hangup) == 0 && hangup.sa_handler != SIG_IGN) sigaction(SIGHUP, &action, nullptr);
 }
 
 int pending_interrupt() { return g_signal; }
 
 int interrupt_exit_code(int signal_number) { return 128 + signal_number; }
 
-const char* interrupt_name(int signal_number) { return signal_number == SIGINT ? "SIGINT" : "SIGTERM"; }
+const char* interrupt_name(int signal_number) {
+  return signal_number == SIGINT ? "SIGINT" : signal_number == SIGHUP ? "SIGHUP" : "SIGTERM";
+}
 
 }  // namespace periflex

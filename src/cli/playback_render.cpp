@@ -64,18 +64,11 @@ int render_checkpoint_folder(RunOptions options) {
       if (k == shot) sink->submit(snapshot, true);
     }
   } catch (const CheckpointError& e) {
-    try {
-      sink->finish();  // the frames in flight; the refusal is what the user needs to read
-    } catch (const std::exception&) {
-    }
+    sink->finish();  // the frames in flight; the refusal is what the user needs to read
     throw refuse(std::string("cannot replay: ") + e.what());
   }
-  FrameStats stats;
-  try {
-    stats = sink->finish();
-  } catch (const std::exception& e) {
-    if (error.empty()) error = e.what();
-  }
+  const FrameStats stats = sink->finish();
+  if (error.empty()) error = stats.error;
   if (!error.empty()) {
     std::fprintf(stderr, "periflex: error: %s\n", error.c_str());
     return signal_number != 0 ? interrupt_exit_code(signal_number) : kExitOther;

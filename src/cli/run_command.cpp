@@ -80,11 +80,8 @@ struct RunOutputs {
   // waits for the frames in flight and closes the VTK series; a failure is kept, not thrown
   void finish() {
     if (frames) {
-      try {
-        frame_stats = frames->finish();
-      } catch (const std::exception& e) {
-        frame_error = e.what();
-      }
+      frame_stats = frames->finish();
+      frame_error = frame_stats.error;
       frames.reset();
     }
     if (vtk) {

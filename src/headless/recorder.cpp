@@ -76,7 +76,9 @@ struct Recorder::Impl {
   // Written by one thread each (submit_seconds by the caller's), read after they are joined.
   double draw_seconds = 0.0, png_seconds = 0.0, movie_seconds = 0.0, submit_seconds = 0.0;
   long sequence_frames = 0, screenshots = 0;
+  long files_written = 0;  // sequence frames written to PNG files
   int samples_used = 1;
+  RecorderStats stats;  // what finish() found
 
   void fail(std::exception_ptr e) {
     std::lock_guard lock(mutex);
@@ -220,10 +222,12 @@ void Recorder::Impl::file_loop() {
       }
       const auto start_write = Clock::now();
       const Frame& frame = frames[f];
-      if (frame.screenshot)
+      if (frame.screenshot) {
         write_png(options.screenshot_path, frame.image);
-      else
+      } else {
         pngs->write_numbered(frame.index, frame.image);
+        ++files_written;
+      }
       png_seconds += seconds_between(start_write, Clock::now());
       release_frame(f);
     }
@@ -346,10 +350,21 @@ RecorderStats Recorder::finish() {
   m.stop_threads();
   m.finished = true;
   // after a failure elsewhere the movie is still open: end ffmpeg now, not at destruction
-  m.movie.reset();
-  if (m.error) std::rethrow_exception(m.error);
-  RecorderStats stats;
+  if (m.movie) {
+    try {
+      m.movie->close();
+    } catch (...) {
+      if (!m.error) m.error = std::current_exception();
+    }
+  }
+  RecorderStats& stats = m.stats;
   stats.frames = m.sequence_frames;
+  // after a failure, the frames drawn are not all written: count those every output has
+  if (m.error) {
+    if (m.pngs) stats.frames = std::min(stats.frames, m.files_written);
+    if (m.movie) stats.frames = std::min(stats.frames, m.movie->frames_written());
+  }
+  m.movie.reset();
   stats.screenshots = m.screenshots;
   stats.samples = m.samples_used;
   stats.draw_seconds = m.draw_seconds;
@@ -357,7 +372,10 @@ RecorderStats Recorder::finish() {
   stats.movie_seconds = m.movie_seconds;
   stats.submit_seconds = m.submit_seconds;
   stats.wall_seconds = seconds_between(m.start, Clock::now());
+  if (m.error) std::rethrow_exception(m.error);
   return stats;
 }
+
+RecorderStats Recorder::stats() const { return impl_->stats; }
 
 }  // namespace periflex

@@ -81,6 +81,9 @@ class Recorder {
   // Waits until every submitted frame is written and the movie is closed, stops the threads and
   // returns the statistics; rethrows the first error of any recording thread. Call once.
   RecorderStats finish();
+  // The statistics finish() returned, also after it threw: frames then counts the sequence
+  // frames that reached every output whole (PNG files written, frames handed to ffmpeg).
+  RecorderStats stats() const;
 
  private:
   struct Impl;

@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "io/child_process.h"
+#include "io/mp4_fragments.h"
 
 namespace periflex {
 
@@ -180,6 +181,15 @@ void Mp4Writer::close() {
     throw std::runtime_error(message);
   }
   std::remove(log_path_.c_str());
+  // ffmpeg exits with success even when the disk refused part of the file: read it back
+  const Mp4Fragments movie = read_mp4_fragments(path_);
+  if (!movie.whole || movie.samples != count_) {
+    const long sent = count_;
+    count_ = movie.samples;
+    throw std::runtime_error("movie " + path_ + ": the file holds " + std::to_string(movie.samples) + " of the " +
+                             std::to_string(sent) + " frames sent to ffmpeg" +
+                             (movie.whole ? "" : ", its last part cut short") + " (disk full?)");
+  }
 }
 
 }  // namespace periflex

@@ -61,8 +61,10 @@ class Mp4Writer : public FrameWriter {
   // Throws std::runtime_error (with the end of ffmpeg's log) when ffmpeg has died or the frame
   // size differs from the one given at construction.
   void write(const RgbaImage& frame) override;
-  // Closes ffmpeg's input and waits for it; throws when it exits with an error.
+  // Closes ffmpeg's input and waits for it; throws when it exits with an error, or when the
+  // file does not hold every frame sent (ffmpeg ignores a full disk).
   void close() override;
+  // Frames sent to ffmpeg; after close() found the file short, the frames the file holds.
   long frames_written() const override { return count_; }
 
  private:

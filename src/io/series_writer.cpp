@@ -75,9 +75,15 @@ void SeriesWriter::write_all(const std::string& text) {
   while (done < text.size()) {
     const ssize_t n = ::write(fd_, text.data() + done, text.size() - done);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) throw std::runtime_error("could not write to " + path_ + " (" + std::strerror(errno) + ")");
+    if (n <= 0) {
+      const int error = errno;
+      // a full disk took part of the line: the file keeps its whole lines only
+      if (done > 0 && ::ftruncate(fd_, size_) == 0) ::lseek(fd_, size_, SEEK_SET);
+      throw std::runtime_error("could not write to " + path_ + " (" + std::strerror(error) + ")");
+    }
     done += static_cast<size_t>(n);
   }
+  size_ += static_cast<off_t>(text.size());
 }
 
 bool SeriesWriter::write(const Sample& s) {

@@ -1,7 +1,10 @@
 // series.csv: one row per output sample (time, energies, constraint violation, damage, probes).
 // Each row reaches the file in one write() call of the whole line (no stdio buffer to split it,
-// however many probe columns), so a run killed half-way leaves complete rows.
+// however many probe columns), so a run killed half-way leaves complete rows; a line that a full
+// disk cuts short is taken back out.
 #pragma once
+
+#include <sys/types.h>
 
 #include <string>
 #include <vector>
@@ -29,10 +32,12 @@ class SeriesWriter {
   const std::vector<std::string>& columns() const { return columns_; }
 
  private:
-  // Writes all of `text` at the end of the file; throws when the disk refuses.
+  // Writes all of `text` at the end of the file; throws when the disk refuses, after cutting
+  // the file back to its whole lines.
   void write_all(const std::string& text);
 
   int fd_ = -1;
+  off_t size_ = 0;  // bytes of whole lines in the file
   std::string path_;
   std::vector<std::string> columns_;
   bool with_damage_ = false, with_contact_ = false;

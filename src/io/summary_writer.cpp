@@ -1,6 +1,7 @@
 #include "io/summary_writer.h"
 
 #include <cmath>
+#include <stdexcept>
 #include <nlohmann/json.hpp>
 
 #include "output/atomic_file.h"
@@ -60,7 +61,14 @@ void write_summary(const std::string& path, const ModelInfo& info, const RunSumm
   j["model"] = model;
   j["active_modules"] = info.active_modules;
 
-  write_file_atomically(path, j.dump(2) + "\n");
+  const std::string text = j.dump(2) + "\n";
+  try {
+    write_file_atomically(path, text);
+  } catch (const std::runtime_error&) {
+    // A full disk has no room for the temporary, but the summary written when the run started
+    // holds its blocks: the run's end is told there, indented if it fits, else on one line.
+    if (!overwrite_in_place(path, text) && !overwrite_in_place(path, j.dump() + "\n")) throw;
+  }
 }
 
 }  // namespace periflex

@@ -1,5 +1,6 @@
 // summary.json: what ran, how long it took, what the model contained, how it ended.
-// Rewritten atomically, so it is valid JSON at every moment of a run.
+// Rewritten atomically, so it is valid JSON at every moment of a run; on a full disk, where
+// there is no room for a second file, overwritten where it stands.
 #pragma once
 
 #include <string>

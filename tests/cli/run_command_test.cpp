@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csignal>
 #include <regex>
+#include <thread>
 
 #include "child_run.h"
 #include "run_output_files.h"
@@ -252,6 +253,30 @@ TEST(RunCommand, SigtermMidRunStopsCleanly) {
   expect_clean_interrupt("sigterm_mid", SIGTERM, {}, [](const auto& out) { return has_rows(out, 3); });
 }
 
+// the terminal closed (an ssh connection lost)
+TEST(RunCommand, SighupMidRunStopsCleanly) {
+  expect_clean_interrupt("sighup_mid", SIGHUP, {}, [](const auto& out) { return has_rows(out, 3); });
+}
+
+// A run started to outlive its terminal (nohup, here the shell's `trap '' HUP`) goes on after
+// SIGHUP, and still stops cleanly on SIGTERM.
+TEST(RunCommand, IgnoredSighupStaysIgnored) {
+  const auto out = fresh_directory("sighup_ignored");
+  const auto shell = Child::shell("trap '' HUP; exec \"" + std::string(PERIFLEX_BINARY) + "\" run \"" +
+                                  scene("glass_branching.toml") + "\" --out \"" + out.string() + "\" --quiet");
+  ASSERT_TRUE(shell->wait_until([&] { return has_rows(out, 3); }, 60.0)) << "never got ready";
+  shell->send(SIGHUP);
+  // still running a second later: more rows come
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  const Series before = read_series(out / "series.csv");
+  EXPECT_TRUE(shell->wait_until([&] { return read_series(out / "series.csv").rows.size() > before.rows.size(); }, 30.0))
+      << "the run stopped on an ignored SIGHUP";
+  shell->send(SIGTERM);
+  const ChildResult r = shell->finish(60.0);
+  EXPECT_EQ(r.exit_code, 143) << r.output;
+  EXPECT_EQ(read_summary(out / "summary.json")["status"], "interrupted");
+}
+
 TEST(RunCommand, SigintDuringSetUpStopsCleanly) {
   // as soon as the first summary.json is there: the model is built, the run not yet started
   expect_clean_interrupt("sigint_setup", SIGINT, {},
@@ -287,6 +312,93 @@ TEST(RunCommand, FailedWriteIsToldInTheSummary) {
   EXPECT_EQ(summary["exit_code"], 1);
   EXPECT_NE(summary["message"].get<std::string>().find("series.csv"), std::string::npos);
 }
+
+// Runs `periflex run SCENE --out run ARGS` in DISK, a disk that really fills up: a tmpfs of
+// `kilobytes`, mounted in a mount namespace of the test's own, which vanishes with it. What the
+// run left is copied to `kept` (cli_test_out_NAME); the output ends with "exit=N". False when no such disk can be made.
+bool run_on_small_disk(const std::string& name, int kilobytes, const std::string& scene_file,
+                       const std::vector<std::string>& args, std::filesystem::path& kept, ChildResult& result) {
+  kept = fresh_directory(name);
+  // a mount point of the test's own: ctest runs tests side by side
+  const auto disk = fresh_directory(name + "_mount");
+  const std::string mount = "unshare -rm sh -c 'mount -t tmpfs -o size=" + std::to_string(kilobytes) + "k tmpfs \"" +
+                            disk.string() + "\"";
+  if (Child::shell(mount + "'")->finish(kLimit).exit_code != 0) return false;
+  std::string run = "cd \"" + disk.string() + "\" && \"" + PERIFLEX_BINARY + "\" run \"" + scene(scene_file) +
+                    "\" --out run --quiet";
+  for (const std::string& a : args) run += " " + a;
+  run += "; echo \"exit=$?\"; cp -r \"" + disk.string() + "/run/.\" \"" + kept.string() + "\"";
+  result = Child::shell(mount + " && " + run + "'")->finish(kLimit);
+  return true;
+}
+
+// What every run stopped by the full disk shows: exit 1, and a summary.json that is valid JSON,
+// says `error` and names the file the disk refused. Returns the summary.
+nlohmann::json expect_stopped_by_the_disk(const ChildResult& r, const std::filesystem::path& kept,
+                                          const std::string& file) {
+  EXPECT_FALSE(r.timed_out) << r.output;
+  EXPECT_NE(r.output.find("exit=1"), std::string::npos) << r.output;
+  const auto summary = read_summary(kept / "summary.json");
+  EXPECT_FALSE(summary.is_discarded()) << "summary.json is not valid JSON";
+  if (summary.is_discarded()) return nlohmann::json::object();
+  EXPECT_EQ(summary["status"], "error");
+  EXPECT_EQ(summary["exit_code"], 1);
+  EXPECT_NE(summary["message"].get<std::string>().find(file), std::string::npos) << summary["message"];
+  return summary;
+}
+
+// series.csv fills the disk half-way through a row: the file keeps whole rows only, and
+// summary.json, which can no longer be written beside itself and renamed, still ends up saying
+// how the run ended, with the closing line printed.
+TEST(RunCommand, FullDiskKeepsWholeRowsAndATruthfulSummary) {
+  std::filesystem::path kept;
+  ChildResult r;
+  if (!run_on_small_disk("full_disk", 64, "pendulum.toml", {}, kept, r))
+    GTEST_SKIP() << "no small disk here: unshare -rm and a tmpfs mount are not allowed";
+  const auto summary = expect_stopped_by_the_disk(r, kept, "series.csv");
+  EXPECT_NE(r.output.find("series.csv (No space left on device)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("pendulum stopped"), std::string::npos) << r.output;
+
+  const Series s = read_series(kept / "series.csv");
+  EXPECT_EQ(s.incomplete_rows, 0);
+  EXPECT_GT(s.rows.size(), 10u);
+  EXPECT_LT(s.rows.size(), 500u);  // the whole run has 501 rows: the disk did fill
+  EXPECT_EQ(summary.value("rows_written", size_t{0}), s.rows.size());
+}
+
+#ifdef PERIFLEX_TEST_RENDER
+// The frames fill the disk: the summary counts the frames that are there, each a whole PNG.
+TEST(RunCommand, FullDiskCountsTheFramesWritten) {
+  std::filesystem::path kept;
+  ChildResult r;
+  if (!run_on_small_disk("full_disk_frames", 600, "slider_crank.toml",
+                         {"--render", "--size", "640x360", "--frames", "run/frames"}, kept, r))
+    GTEST_SKIP() << "no small disk here: unshare -rm and a tmpfs mount are not allowed";
+  const auto summary = expect_stopped_by_the_disk(r, kept, "No space left");
+  const auto frames = files_with_extension(kept / "frames", ".png");
+  EXPECT_GT(frames.size(), 5u);
+  EXPECT_LT(frames.size(), 101u);  // 101 in the whole run: the disk did fill
+  EXPECT_EQ(summary.value("frames_written", size_t{0}), frames.size());
+  EXPECT_NE(r.output.find(std::to_string(frames.size()) + " frames"), std::string::npos) << r.output;
+}
+
+// The movie fills the disk. ffmpeg itself exits with success; the run reads the file back and
+// tells the frames it holds, each of which plays.
+TEST(RunCommand, FullDiskCutsTheMovieAndSaysSo) {
+  if (!have_program("ffmpeg")) GTEST_SKIP() << "ffmpeg is not installed";
+  std::filesystem::path kept;
+  ChildResult r;
+  if (!run_on_small_disk("full_disk_movie", 150, "slider_crank.toml",
+                         {"--render", "--size", "640x360", "--movie", "run/m.mp4", "--set", "solver.output_interval=0.1"},
+                         kept, r))
+    GTEST_SKIP() << "no small disk here: unshare -rm and a tmpfs mount are not allowed";
+  const auto summary = expect_stopped_by_the_disk(r, kept, "m.mp4");
+  const long written = summary.value("frames_written", 0L);
+  EXPECT_GT(written, 0);
+  EXPECT_LT(written, 101);  // 101 in the whole run: the disk did fill
+  EXPECT_GE(movie_frames(kept / "m.mp4"), written);
+}
+#endif
 
 // The closing line and summary.json give the same steps per second, and the solver's processor
 // time beside its wall time.

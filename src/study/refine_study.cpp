@@ -58,7 +58,7 @@ double first_extreme_time(const std::vector<double>& times, const std::vector<do
   return -1.0;
 }
 
-StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
+StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn, const StudyStop& stop) {
   const auto log = [&](const std::string& line) {
     if (log_fn) log_fn(line);
   };
@@ -110,6 +110,7 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
 
   for (double ratio : ratios) {
     for (double dx : spacings) {
+      if (result.stopped) break;
       StudyRow row;
       row.integrator = integrator;
       row.correction = "-";
@@ -158,7 +159,10 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
         record();
         while (sim.time() < scene.solver.end_time) {
           const auto t0 = Clock::now();
-          for (long s = 0; s < every; ++s) sim.step();
+          for (long s = 0; s < every; ++s) {
+            if (stop && stop()) throw StudyStopped("stopped at t = " + format_g(sim.time()) + " s");
+            sim.step();
+          }
           wall += std::chrono::duration<double>(Clock::now() - t0).count();
           record();
         }
@@ -174,6 +178,10 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn) {
         }
       } catch (const NumericalError& e) {
         row.status = "failed: " + e.diagnostic().quantity;
+      } catch (const StudyStopped&) {
+        result.stopped = true;
+        log("dx=" + format_g(dx) + " m=" + format_g(ratio) + ": stopped, not measured");
+        break;
       }
       log("dx=" + format_g(dx) + " m=" + format_g(ratio) + ": " +
           (row.ok() ? format_g(row.measured) + " " + result.quantity_unit + " (error " +

@@ -19,7 +19,8 @@ namespace periflex {
 
 // Runs every (grid_spacing, horizon_ratio) pair of study.refine, each at half the explicit
 // critical step of its grid (or at the [[method]]'s dt, scaled with the grid, when one is given).
-StudyResult run_refine_study(const StudyDef& study, const StudyLog& log = {});
+// When `stop` asks, the run under way is dropped and the result says `stopped`.
+StudyResult run_refine_study(const StudyDef& study, const StudyLog& log = {}, const StudyStop& stop = {});
 
 // The time of the first interior extreme (a minimum when `minimum`) of a sampled signal, refined
 // by the parabola through the extreme sample and its neighbours; negative when there is none.

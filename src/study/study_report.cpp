@@ -81,10 +81,18 @@ std::string refine_csv(const StudyResult& result) {
   return out.str();
 }
 
+// A study stopped by the user says so above its table: the table is not the whole grid.
+std::string stopped_note(const StudyResult& result) {
+  if (!result.stopped) return "";
+  return "**Stopped before the end** (interrupted): " + std::to_string(result.rows.size()) +
+         " runs finished and are below; the rest of the grid did not run.\n\n";
+}
+
 std::string refine_markdown(const StudyResult& result) {
   std::ostringstream out;
   out << "### " << result.study.name << " (scene " << result.scene_name << ")\n\n";
   out << "Known answer: " << result.reference_description << ".\n\n";
+  out << stopped_note(result);
   out << "| grid spacing [m] | horizon ratio m | particles | dt [s] | " << result.quantity << " ["
       << result.quantity_unit << "] | relative error | steps | wall time [s] |\n";
   out << "|---|---|---|---|---|---|---|---|\n";
@@ -145,6 +153,7 @@ std::string study_markdown(const StudyResult& result) {
   out << "Reference: " << result.reference_description << ".  \n";
   out << "Relative errors are divided by the largest excursion of the compared probes, "
       << short_num(result.excursion) << " m.\n\n";
+  out << stopped_note(result);
   out << "| integrator | correction | dt | tol | max error (rel) | RMS error (rel) | energy error (rel) "
          "| max violation |";
   if (result.has_fracture) out << " crack-tip error [m] | broken-bond error |";

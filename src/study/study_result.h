@@ -62,6 +62,9 @@ struct StudyResult {
   std::vector<ObservedOrder> orders;
   std::string quantity;           // refine studies: what was measured (wave_speed, ...)
   std::string quantity_unit;
+  // Ended early by the caller's stop (Ctrl-C): rows holds the runs that finished, the rest of the
+  // grid did not run.
+  bool stopped = false;
 };
 
 // Least-squares slope of log(error_max) against log(dt) per series, or against log(tol) for a

@@ -161,7 +161,7 @@ bool scene_has_fracture(const SceneDef& scene) {
 
 // One run of `scene` to the comparison times; records only when asked (timing repeats do not).
 Track run_once(const SceneDef& scene, const StudyDef& study, const std::vector<double>& times,
-               double time_slack, bool record) {
+               double time_slack, bool record, const StudyStop& stop) {
   Track track;
   auto start = Clock::now();
   Simulation sim(scene);
@@ -196,7 +196,10 @@ Track run_once(const SceneDef& scene, const StudyDef& study, const std::vector<d
 
   for (size_t k = 1; k < times.size(); ++k) {
     start = Clock::now();
-    while (sim.time() < times[k] - time_slack) sim.step();
+    while (sim.time() < times[k] - time_slack) {
+      if (stop && stop()) throw StudyStopped("stopped at t = " + format_g(sim.time()) + " s");
+      sim.step();
+    }
     track.wall += seconds_since(start);
     if (record) take_sample();
   }
@@ -306,7 +309,7 @@ SceneDef study_scene(const StudyDef& study) {
   return scene;
 }
 
-StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
+StudyResult run_study(const StudyDef& study, const StudyLog& log_fn, const StudyStop& stop) {
   const auto log = [&](const std::string& line) {
     if (log_fn) log_fn(line);
   };
@@ -379,9 +382,9 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
         ref_scene.solver.correction.method = correction_method(study.reference_correction);
       ref_scene.solver.dt = ref_dt;
       log("reference: " + study.reference_integrator + " at dt = " + format_g(ref_dt));
-      Track fine = run_once(ref_scene, study, times, 1e-6 * ref_dt, true);
+      Track fine = run_once(ref_scene, study, times, 1e-6 * ref_dt, true, stop);
       ref_scene.solver.dt = 2.0 * ref_dt;
-      const Track coarse = run_once(ref_scene, study, times, 2e-6 * ref_dt, true);
+      const Track coarse = run_once(ref_scene, study, times, 2e-6 * ref_dt, true, stop);
       // the fine run's own error, estimated by the change from twice its step
       for (size_t k = 0; k < times.size(); ++k)
         result.reference_error = std::max(result.reference_error, probe_distance(fine.probes[k], coarse.probes[k], groups));
@@ -398,8 +401,9 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
   log("reference: " + result.reference_description);
   const double scale = result.excursion > 0.0 ? result.excursion : 1.0;
 
-  // the grid
+  // the grid, until `stop` asks (the run under way is then dropped)
   for (const StudyMethodDef& m : study.methods) {
+    if (result.stopped) break;
     const bool adaptive = !m.tolerances.empty();
     std::vector<std::string> corrections = m.corrections;
     if (corrections.empty()) corrections.push_back(correction_name(base.solver.correction.method));
@@ -409,6 +413,7 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
     for (const std::string& correction : corrections) {
       for (double tol : tols) {
         for (double dt : steps) {
+          if (result.stopped) break;
           StudyRow row;
           row.integrator = m.integrator;
           row.correction = correction;
@@ -424,9 +429,10 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
           }
           const double slack = 1e-6 * dt;
           try {
-            const Track track = run_once(scene, study, times, slack, true);
+            const Track track = run_once(scene, study, times, slack, true, stop);
             std::vector<double> walls{track.wall};
-            for (int r = 1; r < study.repeats; ++r) walls.push_back(run_once(scene, study, times, slack, false).wall);
+            for (int r = 1; r < study.repeats; ++r)
+              walls.push_back(run_once(scene, study, times, slack, false, stop).wall);
             row.wall_time = median(walls);
             row.steps = track.steps;
             row.violation = track.violation;
@@ -451,6 +457,10 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn) {
             if (!std::isfinite(row.error_max)) row.status = "failed: probe positions not finite";
           } catch (const NumericalError& e) {
             row.status = "failed: " + e.diagnostic().quantity;
+          } catch (const StudyStopped&) {
+            result.stopped = true;
+            log(row.integrator + " " + row.correction + " dt=" + format_g(dt) + ": stopped, not measured");
+            break;
           }
           if (!row.ok()) {
             const double nan = std::numeric_limits<double>::quiet_NaN();

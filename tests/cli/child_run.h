@@ -60,6 +60,13 @@ class Child {
   Child& operator=(const Child&) = delete;
 
   bool started() const { return pid_ > 0; }
+  // What the child has printed so far.
+  std::string output_so_far() const {
+    std::ifstream in(log_);
+    std::stringstream text;
+    text << in.rdbuf();
+    return text.str();
+  }
   void send(int signal_number) const { ::kill(pid_, signal_number); }
 
   // Polls `ready` every 10 ms until it holds or the child ends or `limit` seconds pass; true when it held.

@@ -3,6 +3,7 @@
 // docs/gui.md describes the controls, the threads and the script format.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,12 +22,17 @@ struct GuiOptions {
   double deform = -1.0;
   // A checkpoint folder to replay instead of a scene (`periflex play DIR`, app/playback_source.h).
   std::string playback_dir;
+  // Asked every frame: a signal the program received (Ctrl-C in the terminal that started it,
+  // SIGTERM, a closed terminal), or 0. The window then closes as if asked to, a recording under
+  // way is finished, and run_gui returns 128 + the signal.
+  std::function<int()> interrupt;
 };
 
 // Opens the window and runs until it is closed (or, with frames > 0, for that many frames).
 // Returns an exit code: 0 ok; 2 bad input (scene, override or script); 3 a numerical failure
 // at start, or standing at the end of a --frames run; 1 anything else (no display, a failed
-// script expectation, a screenshot that could not be written).
+// script expectation, a screenshot that could not be written); 128 + a signal that interrupt
+// reported.
 int run_gui(const GuiOptions& options);
 
 }  // namespace periflex

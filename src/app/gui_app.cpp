@@ -645,6 +645,10 @@ int GuiApp::run() {
   for (;;) {
     glfwPollEvents();
     if (glfwWindowShouldClose(window_)) break;
+    if (const int signal_number = options_.interrupt ? options_.interrupt() : 0) {
+      exit_code_ = 128 + signal_number;
+      break;
+    }
     take_snapshot();
     watch_scene_file();
     const bool advance = run_script();

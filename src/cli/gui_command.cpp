@@ -1,10 +1,12 @@
 #include "cli/gui_command.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
+#include "cli/interrupt.h"
 #include "cli/run_option_checks.h"
 #include "core/error.h"
 
@@ -92,10 +94,16 @@ int gui_command(const GuiCommandOptions& options) {
   gui.script = options.script;
   gui.samples = options.samples;
   gui.playback_dir = options.playback_dir;
+  // Ctrl-C in the terminal, SIGTERM or a closed terminal close the window cleanly
+  catch_interrupts();
+  gui.interrupt = pending_interrupt;
   if (!parse_deform(options.deform, gui.deform)) {
     throw InputError({"command line", 0, 0, "--deform"}, parse_deform_check(options.deform));
   }
-  return run_gui(gui);
+  const int exit_code = run_gui(gui);
+  if (const int signal_number = pending_interrupt())
+    std::fprintf(stderr, "periflex: the window was closed by %s\n", interrupt_name(signal_number));
+  return exit_code;
 #else
   throw InputError({"command line", 0, 0, "gui"},
                    "this build has no visualiser (configured with -DPERIFLEX_GUI=OFF); use 'periflex run'");

@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_plot | record_mp4 | keys | damping | refusal | spring | deform | teach | inspect | plot |
+# CASE: record_png | record_plot | record_mp4 | record_interrupted | keys | damping | refusal | spring | deform | teach | inspect | plot |
 #       plot_series | knife | body | contacts | history
 set -uo pipefail
 
@@ -109,8 +109,8 @@ retype() {
 # floating-point comparison through awk: holds "A OP B"
 holds() { awk "BEGIN { exit !($1) }"; }
 
-# recording from the Export panel: open it, name the target, Start, let frames come, Stop
-record() {
+# recording from the Export panel: open it, name the target, Start, until 5 frames are written
+begin_record() {
   local target=$1
   shift
   # a run that does not reach its end (and pause) while it records
@@ -130,18 +130,31 @@ record() {
   field_key Return
   click start_recording
   wait_until 30 "recording to start (Stop recording shown)" '[[ -n "$(centre stop_recording)" ]]'
-  # the swinging pendulum would make the view grow: not while recording
-  local view
   view=$(state world_to_window)
   wait_until 60 "at least 5 recorded frames" '(( $(state frames_written) >= 5 ))'
+}
+
+# the frames the log says the window recorded last
+recorded_frames() { sed -n 's/.*recorded \([0-9]*\) frames.*/\1/p' "$log" | tail -n 1; }
+
+# begin_record, then Stop and quit
+record() {
+  begin_record "$@"
+  # the swinging pendulum would make the view grow: not while recording
   sleep 1
   [[ "$(state world_to_window)" == "$view" ]] || fail "the view changed during the recording"
   click stop_recording
   wait_until 30 "recording to stop (Start recording shown again)" \
     '[[ "$(state recording)" == 0 && -n "$(centre start_recording)" ]]'
   quit
-  recorded=$(sed -n 's/.*recorded \([0-9]*\) frames.*/\1/p' "$log" | tail -n 1)
+  recorded=$(recorded_frames)
   [[ -n "$recorded" ]] && ((recorded >= 5)) || fail "the log reports no recording of 5 frames or more"
+}
+
+# the frames of a movie as ffprobe decodes them
+movie_frames() {
+  ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 "$1" ||
+    fail "ffprobe cannot read $1"
 }
 
 # a column chosen from a plot's list (once the list stands still: a list lays itself out over
@@ -188,11 +201,30 @@ case "$case_name" in
     # in a 1024x768 window (a projector): the panel column scrolls to the buttons
     record "$work/movie.mp4" --size 1024x768
     [[ "$(state window)" == "1024 768" ]] || fail "window $(state window), asked 1024x768"
-    frames=$(ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames \
-             -of csv=p=0 "$work/movie.mp4") || fail "ffprobe cannot read the movie"
+    frames=$(movie_frames "$work/movie.mp4")
     ((frames == recorded)) || fail "the movie has $frames frames, the window recorded $recorded"
     size=$(ffprobe -v error -select_streams v:0 -show_entries stream=width,height -of csv=p=0:s=x "$work/movie.mp4")
     [[ "$size" == 1024x768 ]] || fail "movie frames of $size, the window is 1024x768"
+    ;;
+  record_interrupted)
+    # Ctrl-C in the terminal that started the window, while it records: the window closes, the
+    # movie is finished with every frame recorded, exit code 130
+    begin_record "$work/movie.mp4"
+    kill -INT "$pid"
+    end=$((SECONDS + 30))
+    while kill -0 "$pid" 2>/dev/null; do
+      ((SECONDS < end)) || fail "the program did not exit within 30 s of SIGINT"
+      sleep 0.1
+    done
+    wait "$pid"
+    code=$?
+    pid=""
+    ((code == 130)) || fail "exit code $code after SIGINT, expected 130"
+    grep -q "the window was closed by SIGINT" "$log" || fail "no word of the signal in the log"
+    recorded=$(recorded_frames)
+    [[ -n "$recorded" ]] && ((recorded >= 5)) || fail "the log reports no recording of 5 frames or more"
+    frames=$(movie_frames "$work/movie.mp4")
+    ((frames == recorded)) || fail "the movie has $frames frames, the window recorded $recorded"
     ;;
   keys)
     # the shortcuts as quick taps of 20 ms, shorter than a frame may take

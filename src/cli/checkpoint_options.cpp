@@ -7,6 +7,7 @@
 
 #include "cli/scene_setup.h"
 #include "core/error.h"
+#include "core/sim_time.h"
 #include "output/run_record.h"
 
 namespace periflex {
@@ -30,7 +31,7 @@ std::string interrupted_file_name(double time) {
   return name;
 }
 
-SimState load_restart(const RunOptions& o, uint64_t scene_hash, CheckpointHeader& header) {
+SimState load_restart(const RunOptions& o, uint64_t scene_hash, double end_time, CheckpointHeader& header) {
   const std::string& path = o.restart_path;
   auto refuse = [&](const std::string& why) -> InputError {
     return InputError(flag_location("--restart"), "cannot continue from '" + path + "': " + why);
@@ -48,6 +49,14 @@ SimState load_restart(const RunOptions& o, uint64_t scene_hash, CheckpointHeader
   if (header.scene_hash != scene_hash) {
     throw refuse("written for another scene, or for this one with other --set, --dt or --integrator values "
                  "(give the ones of the run that wrote it)");
+  }
+  // a state past the end: nothing to run, and no way back
+  if (end_time < header.time - time_tolerance(0.0, header.time)) {
+    char times[160];
+    std::snprintf(times, sizeof times, "its state is at t = %.9g s, after the run's end time %.9g s", header.time,
+                  end_time);
+    throw InputError(flag_location(o.until ? "--until" : "--restart"),
+                     "cannot continue from '" + path + "': " + times + " (give --until beyond it)");
   }
   return state;
 }

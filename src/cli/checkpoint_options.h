@@ -24,7 +24,8 @@ std::string interrupted_file_name(double time);
 
 // The state in options.restart_path with its header. Throws InputError at --restart naming the
 // file and why it cannot be continued from: unreadable, not a checkpoint, another format or
-// program version, another scene (or other overrides), truncated or damaged.
-SimState load_restart(const RunOptions& options, uint64_t scene_hash, CheckpointHeader& header);
+// program version, another scene (or other overrides), truncated or damaged; at --until (or
+// --restart) when the state lies after the run's `end_time`.
+SimState load_restart(const RunOptions& options, uint64_t scene_hash, double end_time, CheckpointHeader& header);
 
 }  // namespace periflex

@@ -146,7 +146,7 @@ int run_command(const RunOptions& requested) {
   const uint64_t scene_hash = checkpointing || !options.restart_path.empty() ? run_scene_hash(options) : 0;
   std::optional<SimState> restart;
   CheckpointHeader restart_header;
-  if (!options.restart_path.empty()) restart = load_restart(options, scene_hash, restart_header);
+  if (!options.restart_path.empty()) restart = load_restart(options, scene_hash, scene.solver.end_time, restart_header);
   // the folder names its scene, so it can be replayed on its own (`periflex play DIR`)
   if (checkpointing) {
     RunRecord record;

@@ -177,6 +177,13 @@ TEST(Checkpoint, ForeignTruncatedDamagedAndOtherVersionsAreRefused) {
   header.program_version = "0.0.1";
   write_checkpoint((dir / "old.pfstate").string(), header, state);
   expect_refused(dir / "old.pfstate", "written by periflex 0.0.1");
+  // a state after the end asked for: nothing to run, which a run did silently before
+  const auto past = run_periflex("run " + scene("pendulum.toml") + " --quiet --out " + (dir / "past").string() +
+                                 " --restart " + good.string() + " --until 0.3");
+  EXPECT_EQ(past.exit_code, 2) << past.output;
+  EXPECT_NE(past.output.find("'--until'"), std::string::npos) << past.output;
+  EXPECT_NE(past.output.find("its state is at t = 0.4 s, after the run's end time 0.3 s"), std::string::npos)
+      << past.output;
   // a missing file
   const auto missing = run_periflex("run " + scene("pendulum.toml") + " --quiet --restart " + (dir / "none").string());
   EXPECT_EQ(missing.exit_code, 2) << missing.output;

@@ -23,6 +23,7 @@
 #include "cli/sweep_command.h"
 #include "core/error.h"
 #include "core/thread_waiting.h"
+#include "study/sweep_def.h"
 
 namespace {
 
@@ -67,7 +68,7 @@ CLI::App* add_sweep_subcommand(CLI::App& app, SweepOptions& o) {
   cmd->add_option("sweep", o.sweep_path, "Sweep file (TOML), e.g. scenes/studies/notched_plate_sweep.toml");
   cmd->add_option("--out", o.out_dir, "Output directory (default out/sweep-<name>)");
   cmd->add_option("--jobs", o.jobs, "Runs at once on this machine (overrides the sweep's jobs)")
-      ->check(CLI::Range(1, 1024));
+      ->check(CLI::Range(1, kMaxSweepJobs));
   cmd->add_option("--jobs-file", o.jobs_file,
                   "Write one command line per run here (GNU parallel) and sweep.slurm beside the runs; run nothing");
   cmd->add_option("--collect", o.collect_dir, "Gather the runs of this sweep folder into sweep.csv");

@@ -117,8 +117,10 @@ ChildResult run_child(const std::vector<std::string>& argv, const ChildLimits& l
   struct rlimit memory_limit {};
   const bool limit_memory = limits.memory_bytes > 0;
   if (limit_memory) {
-    memory_limit.rlim_cur = static_cast<rlim_t>(limits.memory_bytes);
-    memory_limit.rlim_max = static_cast<rlim_t>(limits.memory_bytes);
+    // a limit past what rlim_t holds is no limit (the cast itself would be undefined)
+    const bool representable = limits.memory_bytes < static_cast<double>(RLIM_INFINITY);
+    memory_limit.rlim_cur = representable ? static_cast<rlim_t>(limits.memory_bytes) : RLIM_INFINITY;
+    memory_limit.rlim_max = memory_limit.rlim_cur;
   }
 
   int pipe_fds[2];

@@ -65,9 +65,13 @@ SweepDef parse_sweep(const std::string& toml_text, const std::string& display_pa
   sweep.name = std::move(head.name);
   sweep.scene_path = std::move(head.scene_path);
   sweep.overrides = std::move(head.overrides);
+  // the bounds of the command line's --jobs; a memory limit beyond any machine is a typo
   sweep.jobs = static_cast<int>(s.integer("jobs", 2, 1));
+  if (sweep.jobs > kMaxSweepJobs) s.fail("jobs", "at most " + std::to_string(kMaxSweepJobs) + " runs at once");
   sweep.timeout_seconds = s.number("timeout", 3600.0, Sign::kPositive);
-  sweep.memory_bytes = s.number("memory_gb", 4.0, Sign::kPositive) * 1e9;
+  const double memory_gb = s.number("memory_gb", 4.0, Sign::kPositive);
+  if (memory_gb > kMaxSweepMemoryGb) s.fail("memory_gb", "at most 1e6 (a petabyte) of address space per run");
+  sweep.memory_bytes = memory_gb * 1e9;
   if (s.has("series")) sweep.series_where = context.locate(s.node("series"), s.key_path("series"));
   sweep.series = s.strings("series");
   s.finish();

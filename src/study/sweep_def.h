@@ -55,6 +55,9 @@ SweepDef load_sweep(const std::string& path);
 // Runs a sweep may hold: each is a folder and a scene read before anything runs (about 0.1 ms
 // and 1 kB each), and a Slurm array or a job list of more is a mistake more often than a plan.
 constexpr double kMaxSweepRuns = 1e5;
+// Runs at once (the file's jobs and --jobs alike), and the address space one run may be given.
+constexpr int kMaxSweepJobs = 1024;
+constexpr double kMaxSweepMemoryGb = 1e6;
 
 // The runs of the grid, the last parameter varying fastest. Each run's scene is loaded once
 // with its overrides, so a key or value the scene refuses is reported at the parameter's line

@@ -206,6 +206,9 @@ TEST(SweepCommand, BadSweepFilesExitTwoNamingFileLineAndColumn) {
        "[[parameter]]\nkey = \"solver.dt\"\nvalues = " + many_values() +
            "\n[[parameter]]\nkey = \"body.bob.mass\"\nvalues = " + many_values() + "\n",
        ":12:10", "the grid has 160000 runs (400 x 400 values)"},
+      // an address-space limit no machine has (its cast to the limit's type killed every run)
+      {"MemoryBeyondAnyMachine", "memory_gb = 1e30\n[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3]\n", ":7:13",
+       "memory_gb"},
       {"SeriesColumnNoRunWrites", "[[parameter]]\nkey = \"solver.dt\"\nvalues = [1e-3]\n", ":6:10",
        "writes no series.csv column 'probe.bob.z'", "\"probe.bob.angle\", \"probe.bob.z\""},
   };

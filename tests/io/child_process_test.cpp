@@ -44,6 +44,18 @@ TEST(ChildProcess, StartedChildReadsAndWritesTheGivenDescriptorsInItsOwnGroup) {
   EXPECT_EQ(output, "got hello\noops\n");
 }
 
+// A memory limit past what the limit's type holds is no limit: the child runs (the cast of such
+// a value was undefined and killed the child).
+TEST(ChildProcess, MemoryLimitBeyondTheLimitTypeIsNoLimit) {
+  ChildLimits limits;
+  limits.timeout_seconds = 60.0;
+  limits.memory_bytes = 1e39;
+  const ChildResult r = run_child({"/bin/sh", "-c", "echo ran"}, limits);
+  EXPECT_EQ(r.signal, 0) << r.output;
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("ran"), std::string::npos) << r.output;
+}
+
 TEST(ChildProcess, ProgramThatCannotStartIsReportedNamingIt) {
   std::string error;
   EXPECT_EQ(start_child({"/nonexistent/ffmpeg", "-version"}, {}, error), -1);

@@ -23,6 +23,7 @@
 #include "cli/sweep_command.h"
 #include "core/error.h"
 #include "core/thread_waiting.h"
+#include "study/study_def.h"
 #include "study/sweep_def.h"
 
 namespace {
@@ -58,7 +59,7 @@ CLI::App* add_study_subcommand(CLI::App& app, StudyOptions& o) {
   cmd->add_option("study", o.study_path, "Study file (TOML), e.g. scenes/studies/pendulum.toml")->required();
   cmd->add_option("--out", o.out_dir, "Output directory (default out/study-<name>)");
   cmd->add_option("--repeats", o.repeats, "Timed repeats per run (overrides the study's repeats)")
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(1, kMaxStudyRepeats));
   cmd->add_flag("--quiet", o.quiet, "Print only where the results went");
   return cmd;
 }

@@ -100,6 +100,7 @@ StudyDef parse_study(const std::string& toml_text, const std::string& display_pa
   study.end_time = s.number("end_time", 0.0, Sign::kNonNegative, true);
   study.compare_interval = s.number("compare_interval", 0.0, Sign::kNonNegative, true);
   study.repeats = static_cast<int>(s.integer("repeats", 1, 1));
+  if (study.repeats > kMaxStudyRepeats) s.fail("repeats", "at most " + std::to_string(kMaxStudyRepeats) + " timed repeats");
   study.probes = s.strings("probes");
   study.crack_direction = s.axis("crack_direction", Vec2::UnitX());
   s.finish();

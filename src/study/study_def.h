@@ -46,6 +46,9 @@ struct RefineDef {
   std::string probe;                     // probe whose motion gives the quantity; default: the first
 };
 
+// Timed repeats of each run (the file's repeats and --repeats alike).
+constexpr int kMaxStudyRepeats = 1000;
+
 struct StudyDef {
   std::string name;                  // default: file stem
   std::string path;                  // the study file

@@ -274,6 +274,11 @@ StudyOutputs write_study_outputs(const StudyResult& result, const std::string& o
     write_text(dir / "energy.csv", energy_trace_csv(result));
     write_text(dir / "energy.gp", energy_trace_gnuplot_script(result, "energy.csv", "energy.png"));
   }
+  // a plot of nothing is no plot: gnuplot would only fail on the empty ranges
+  if (std::none_of(result.rows.begin(), result.rows.end(), [](const StudyRow& r) { return r.ok(); })) {
+    outputs.plot_message = "no plot made: no run of the study finished";
+    return outputs;
+  }
   if (!gnuplot_available()) {
     outputs.plot_message = "no plot made: gnuplot was not found (install gnuplot-nox, then run "
                            "`gnuplot study.gp` in " + dir.string() + ")";

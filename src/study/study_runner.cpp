@@ -159,6 +159,16 @@ bool scene_has_fracture(const SceneDef& scene) {
   return false;
 }
 
+// A run of `scene` at `dt` takes no more steps than the scene's limits.max_steps (as `run`
+// checks); InputError at `where` otherwise.
+void check_step_count(const SceneDef& scene, double dt, const SourceLocation& where) {
+  const double steps = scene.solver.end_time / dt;
+  if (!(steps <= scene.limits.max_steps))
+    throw InputError(where, "dt " + format_g(dt) + " takes " + format_g(steps) + " steps to the end time " +
+                                format_g(scene.solver.end_time) + " s, more than limits.max_steps = " +
+                                format_g(scene.limits.max_steps) + " (raise dt, lower end_time, or raise the scene's limits.max_steps)");
+}
+
 // One run of `scene` to the comparison times; records only when asked (timing repeats do not).
 Track run_once(const SceneDef& scene, const StudyDef& study, const std::vector<double>& times,
                double time_slack, bool record, const StudyStop& stop) {
@@ -328,11 +338,12 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn, const Study
   for (long k = 0; k <= count; ++k) times[k] = k * interval;
   result.times = times;
 
-  // every fixed-step run must land on the comparison times
+  // every fixed-step run must land on the comparison times, in no more steps than the scene allows
   double smallest_dt = std::numeric_limits<double>::infinity();
   for (const StudyMethodDef& m : study.methods) {
     for (double dt : m.dt) {
       smallest_dt = std::min(smallest_dt, dt);
+      check_step_count(base, dt, m.where);
       // adaptive integrators too: their internal steps stop at the end of every step of dt
       if (!divides(interval, dt))
         throw InputError(m.where, "dt " + format_g(dt) + " does not divide the comparison interval " +
@@ -375,6 +386,7 @@ StudyResult run_study(const StudyDef& study, const StudyLog& log_fn, const Study
       ref_scene.solver.integrator = study.reference_integrator;
       double ref_dt = study.reference_dt > 0.0 ? study.reference_dt : smallest_dt / 8.0;
       if (!std::isfinite(ref_dt)) ref_dt = base.solver.dt / 8.0;
+      check_step_count(base, ref_dt, study_location(study, "study.reference_dt"));
       if (!divides(interval, 2.0 * ref_dt))
         throw InputError(study_location(study, "study.reference_dt"),
                          "twice the reference step must divide the comparison interval " + format_g(interval));

@@ -107,6 +107,13 @@ StudyResult run_refine_study(const StudyDef& study, const StudyLog& log_fn, cons
   if (spacings.empty()) spacings.push_back(body.grid_spacing);
   if (ratios.empty()) ratios.push_back(body.horizon_ratio);
   const std::string integrator = study.methods.empty() ? base.solver.integrator : study.methods[0].integrator;
+  // a method's step, scaled with each grid, in no more steps than the scene allows
+  if (!study.methods.empty() && !study.methods[0].dt.empty()) {
+    SceneDef timed = base;
+    timed.solver.end_time = 1.6 * extreme_at;
+    for (double dx : spacings)
+      check_step_count(timed, study.methods[0].dt[0] * dx / body.grid_spacing, study.methods[0].where);
+  }
 
   for (double ratio : ratios) {
     for (double dx : spacings) {

@@ -159,16 +159,6 @@ bool scene_has_fracture(const SceneDef& scene) {
   return false;
 }
 
-// A run of `scene` at `dt` takes no more steps than the scene's limits.max_steps (as `run`
-// checks); InputError at `where` otherwise.
-void check_step_count(const SceneDef& scene, double dt, const SourceLocation& where) {
-  const double steps = scene.solver.end_time / dt;
-  if (!(steps <= scene.limits.max_steps))
-    throw InputError(where, "dt " + format_g(dt) + " takes " + format_g(steps) + " steps to the end time " +
-                                format_g(scene.solver.end_time) + " s, more than limits.max_steps = " +
-                                format_g(scene.limits.max_steps) + " (raise dt, lower end_time, or raise the scene's limits.max_steps)");
-}
-
 // One run of `scene` to the comparison times; records only when asked (timing repeats do not).
 Track run_once(const SceneDef& scene, const StudyDef& study, const std::vector<double>& times,
                double time_slack, bool record, const StudyStop& stop) {
@@ -312,6 +302,15 @@ bool divides(double interval, double dt) {
 }
 
 }  // namespace
+
+void check_step_count(const SceneDef& scene, double dt, const SourceLocation& where) {
+  const double steps = scene.solver.end_time / dt;
+  if (!(steps <= scene.limits.max_steps))
+    throw InputError(where, "dt " + format_g(dt) + " takes " + format_g(steps) + " steps to the end time " +
+                                format_g(scene.solver.end_time) + " s, more than limits.max_steps = " +
+                                format_g(scene.limits.max_steps) +
+                                " (raise dt, lower end_time, or raise the scene's limits.max_steps)");
+}
 
 SceneDef study_scene(const StudyDef& study) {
   SceneDef scene = load_scene(study.scene_path, study.scene_overrides);

@@ -31,6 +31,10 @@ struct StudyStopped : std::runtime_error {
 // reference, StudyStopped is thrown.
 StudyResult run_study(const StudyDef& study, const StudyLog& log = {}, const StudyStop& stop = {});
 
+// A run of `scene` at `dt` takes no more steps to its end time than the scene's
+// limits.max_steps (as `run` checks); InputError at `where` otherwise.
+void check_step_count(const SceneDef& scene, double dt, const SourceLocation& where);
+
 // The scene of a study with its overrides and end time applied.
 SceneDef study_scene(const StudyDef& study);
 

@@ -1,10 +1,14 @@
 #include "cli/stability_command.h"
 
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 
 #include "cli/interrupt.h"
 #include "core/error.h"
 #include "io/child_process.h"
+#include "scene/scene_budget.h"
 #include "stability/stability_suite.h"
 
 namespace periflex {
@@ -27,8 +31,16 @@ int stability_command(const StabilityOptions& options) {
   }
   if (cases.empty()) throw InputError({"command line", 0, 0, "--case"}, "no stability case matches");
 
+  // what every case would refuse, refused once here: a program that cannot run, more threads
+  // than a run takes on this machine
   SuiteOptions suite;
   suite.program = options.program.empty() ? current_executable() : options.program;
+  if (::access(suite.program.c_str(), X_OK) != 0 || std::filesystem::is_directory(suite.program))
+    throw InputError({"command line", 0, 0, "--program"}, "'" + suite.program + "' is not a program this user can run");
+  if (options.threads > thread_cap(LimitsDef{}))
+    throw InputError({"command line", 0, 0, "--threads"},
+                     "asks for " + std::to_string(options.threads) + " threads, more than a run takes here (" +
+                         std::to_string(thread_cap(LimitsDef{})) + ", 4 x the cores of this machine)");
   suite.out_dir = options.out_dir;
   suite.threads = options.threads;
   // Ctrl-C or SIGTERM: the case under way is told to stop, no further case starts, and the

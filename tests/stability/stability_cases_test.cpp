@@ -98,6 +98,22 @@ TEST(StabilityCommand, WritesMarkdownAndCsvTables) {
   EXPECT_NE(r.output.find("| spring_verlet_10x_limit |"), std::string::npos) << r.output;
 }
 
+// What every case would refuse is refused once, before any case runs (exit 2 naming the flag):
+// the suite used to run all its cases, each failing the same way, and exit 1.
+TEST(StabilityCommand, ProgramThatCannotRunAndTooManyThreadsAreRefusedUpFront) {
+  ChildLimits limits;
+  limits.timeout_seconds = 60;
+  const std::string out = (std::filesystem::current_path() / "stability_refused_out").string();
+  const auto missing =
+      run_child({PERIFLEX_BINARY, "stability", "--quick", "--program", "/nonexistent", "--out", out}, limits);
+  EXPECT_EQ(missing.exit_code, 2) << missing.output;
+  EXPECT_NE(missing.output.find("'--program'"), std::string::npos) << missing.output;
+  const auto threads = run_child({PERIFLEX_BINARY, "stability", "--quick", "--threads", "1024", "--out", out}, limits);
+  EXPECT_EQ(threads.exit_code, 2) << threads.output;
+  EXPECT_NE(threads.output.find("'--threads'"), std::string::npos) << threads.output;
+  EXPECT_FALSE(std::filesystem::exists(out + "/stability.csv"));
+}
+
 // SIGTERM (or Ctrl-C) during the suite: the case under way is told to stop and ends its own
 // way, no further case starts, the table holds what ended, and the suite exits 143. It used to
 // die at once and leave the case's run going in the background.

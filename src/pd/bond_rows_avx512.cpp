@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <type_traits>
 
+#include "pd/bond_prefetch.h"
 #include "pd/bond_rows.h"
 
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
@@ -11,6 +12,15 @@
 namespace periflex {
 
 namespace {
+
+// the bond arrays some rows past bond b, fetched ahead of the loop (bond_prefetch.h)
+template <bool kOffsets>
+inline void prefetch_rows_ahead(const Rows& r, int64_t b) {
+  if constexpr (kOffsets)
+    prefetch_bonds_ahead(r.k, r.cls, r.off, b);
+  else
+    prefetch_bonds_ahead(r.k, r.cls, r.nbr, b);
+}
 
 // ---- AVX-512: eight bonds a vector, no division and no square root ----
 // vdivpd and vsqrtpd share one unit and bounded the AVX2 loops. 1/|y| starts from the hardware
@@ -132,6 +142,7 @@ PERIFLEX_AVX512 void elastic_avx512(int begin, int end, const Rows& r, const dou
     __m512d ax = _mm512_setzero_pd(), ay = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     __mmask8 near = 0;
     const int64_t last = r.row[i + 1];
+    prefetch_rows_ahead<kOffsets>(r, last);
     for (int64_t b = r.row[i]; b < last; b += 8) {
       const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
       __m512d xj, yj;
@@ -176,6 +187,7 @@ PERIFLEX_AVX512 void damped_avx512(int begin, int end, const Rows& r, const doub
     __m512d ax = _mm512_setzero_pd(), ay = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     __mmask8 near = 0;
     const int64_t last = r.row[i + 1];
+    prefetch_rows_ahead<kOffsets>(r, last);
     for (int64_t b = r.row[i]; b < last; b += 8) {
       const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos, 8), xi);
@@ -220,6 +232,7 @@ PERIFLEX_AVX512 void row_max_avx512(int begin, int end, const Rows& r, const dou
     const __m512d xi = _mm512_set1_pd(pos[2 * i]), yi = _mm512_set1_pd(pos[2 * i + 1]);
     __m512d top = _mm512_set1_pd(-1.0);
     const int64_t last = r.row[i + 1];
+    prefetch_rows_ahead<kOffsets>(r, last);
     for (int64_t b = r.row[i]; b < last; b += 8) {
       const Lanes l = load_lanes<kSmallTable, kOffsets>(r, b, last, i, table_lo, table_hi);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos, 8), xi);
@@ -248,6 +261,7 @@ PERIFLEX_AVX512 double energy_avx512(int begin, int end, const Rows& r, const do
     const __m512d xi = _mm512_set1_pd(pos[2 * i]), yi = _mm512_set1_pd(pos[2 * i + 1]);
     __m512d acc = _mm512_setzero_pd();
     const int64_t last = r.row[i + 1];
+    prefetch_rows_ahead<kOffsets>(r, last);
     for (int64_t b = r.row[i]; b < last; b += 8) {
       const Lanes l = load_lanes<true, kOffsets>(r, b, last, i, table_lo, table_hi);
       const __m512d dx = _mm512_sub_pd(_mm512_i32gather_pd(l.twice_j, pos, 8), xi);

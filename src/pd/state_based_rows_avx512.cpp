@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "pd/bond_prefetch.h"
 #include "pd/state_based_rows.h"
 
 #ifdef PERIFLEX_HAVE_LPS_AVX512
@@ -48,6 +49,15 @@ PERIFLEX_LPS_AVX512 inline Block load_block(const BondStore& bonds, int64_t b, i
   k.cls = _mm512_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(k.mask), bonds.length_class.data() + b));
   k.w = _mm512_cvtps_pd(_mm256_maskz_loadu_ps(k.mask, bonds.stiffness.data() + b));
   return k;
+}
+
+// the bond arrays some rows past bond b, fetched ahead of the loop (bond_prefetch.h)
+template <bool kOffsets>
+inline void prefetch_bonds(const BondStore& bonds, int64_t b) {
+  if constexpr (kOffsets)
+    prefetch_bonds_ahead(bonds.stiffness.data(), bonds.length_class.data(), bonds.neighbor_offset.data(), b);
+  else
+    prefetch_bonds_ahead(bonds.stiffness.data(), bonds.length_class.data(), bonds.neighbor.data(), b);
 }
 
 // Neighbour j of lane k of the block starting at bond b (the particle itself past the row's end).
@@ -143,6 +153,7 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
     __m512d acc = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     __m256d acc4 = _mm256_setzero_pd(), top4 = _mm256_set1_pd(-1.0);
     const int64_t last = bonds.row[i + 1];
+    prefetch_bonds<kOffsets>(bonds, last);
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
       if (last - b <= 4) {
         extension_tail<kTrack, kOffsets>(bonds, pos, t, b, last, i, acc4, top4);
@@ -261,6 +272,7 @@ PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, cons
     __m512d fx = _mm512_setzero_pd(), fy = _mm512_setzero_pd();
     __m256d tx = _mm256_setzero_pd(), ty = _mm256_setzero_pd();
     const int64_t last = bonds.row[i + 1];
+    prefetch_bonds<kOffsets>(bonds, last);
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
       if (last - b <= 4) {
         force_tail<kOffsets>(bonds, rec, t, b, last, i, tx, ty);

@@ -7,6 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev gnuplot-nox libdeflate-dev
+  libsuitesparse-dev libopenblas0-serial
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
 )
 if [[ "${1:-}" != "--compute-only" ]]; then

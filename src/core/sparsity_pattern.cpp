@@ -22,23 +22,33 @@ void SparsityPattern::add_block(const std::vector<int>& rows, const std::vector<
 void SparsityPattern::finish() {
   // the diagonal: every coordinate's acceleration is its own unknown in the iteration matrix
   for (int j = 0; j < size_; ++j) add(j, j);
-  // counting sort of the pairs by column, then each column's rows sorted and made unique
-  std::vector<int> count(static_cast<size_t>(size_) + 1, 0);
-  for (const Pair& p : pairs_) ++count[p.col + 1];
-  for (int j = 0; j < size_; ++j) count[j + 1] += count[j];
-  std::vector<int> sorted(pairs_.size());
-  std::vector<int> next(count.begin(), count.end() - 1);
-  for (const Pair& p : pairs_) sorted[next[p.col]++] = p.row;
+  // two counting sorts, by row and then by column, leave each column's rows ascending in time
+  // linear in the pairs (sorting each column took two thirds of the pattern's time on the
+  // notched plate); repeats are then adjacent
+  std::vector<int> row_start(static_cast<size_t>(size_) + 1, 0), col_start(static_cast<size_t>(size_) + 1, 0);
+  for (const Pair& p : pairs_) {
+    ++row_start[p.row + 1];
+    ++col_start[p.col + 1];
+  }
+  for (int i = 0; i < size_; ++i) {
+    row_start[i + 1] += row_start[i];
+    col_start[i + 1] += col_start[i];
+  }
+  std::vector<int> col_by_row(pairs_.size());
+  std::vector<int> next(row_start.begin(), row_start.end() - 1);
+  for (const Pair& p : pairs_) col_by_row[next[p.row]++] = p.col;
   pairs_.clear();
   pairs_.shrink_to_fit();
+  std::vector<int> sorted(col_by_row.size());
+  next.assign(col_start.begin(), col_start.end() - 1);
+  for (int i = 0; i < size_; ++i)
+    for (int k = row_start[i]; k < row_start[i + 1]; ++k) sorted[next[col_by_row[k]]++] = i;
   start_.assign(static_cast<size_t>(size_) + 1, 0);
   rows_.clear();
   rows_.reserve(sorted.size());
   for (int j = 0; j < size_; ++j) {
-    const auto first = sorted.begin() + count[j], last = sorted.begin() + count[j + 1];
-    std::sort(first, last);
-    const auto end = std::unique(first, last);
-    rows_.insert(rows_.end(), first, end);
+    const auto first = sorted.begin() + col_start[j], last = sorted.begin() + col_start[j + 1];
+    rows_.insert(rows_.end(), first, std::unique(first, last));
     start_[j + 1] = static_cast<int>(rows_.size());
   }
 }

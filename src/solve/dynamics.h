@@ -114,6 +114,8 @@ class Dynamics final : public OdeSystem {
   // The pattern of d qdd / d(q, qd) from the model (jacobian_pattern.cpp): the force elements'
   // couplings, and what the constraint solve couples. False when a force element cannot tell.
   bool jacobian_pattern(double t, const Eigen::VectorXd& q, SparsityPattern& pattern) override;
+  // The masses of the coordinates neither constrained nor imposed, 0 for the others.
+  void free_masses(Eigen::VectorXd& mass) override;
   // Multipliers of the active rows from the last derivative() call.
   const Eigen::VectorXd& multipliers() const { return lambda_; }
   // The multiplier of global constraint row `row` from that call (0 for a row left out).

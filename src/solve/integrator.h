@@ -35,6 +35,11 @@ class OdeSystem {
   // the column can move, into pattern (reset to the size of q and finished). False when the
   // system cannot tell; an implicit integrator then finds it by perturbing every coordinate.
   virtual bool jacobian_pattern(double /*t*/, const Eigen::VectorXd& /*q*/, SparsityPattern& /*pattern*/) { return false; }
+  // The mass of each coordinate whose acceleration is its force over its mass (qdd_i = g_i / m_i:
+  // neither constrained nor imposed), 0 for the others, into mass (sized to q); left empty by a
+  // system that cannot tell. An implicit integrator scales those rows of its iteration matrix by
+  // them, which makes their block symmetric for conservative forces (iteration_matrix_factors.h).
+  virtual void free_masses(Eigen::VectorXd& mass) { mass.resize(0); }
 };
 
 class Integrator {

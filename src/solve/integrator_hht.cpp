@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "solve/sparse_lu.h"
+#include "solve/iteration_matrix_factors.h"
 
 namespace periflex {
 
@@ -129,7 +129,7 @@ class Hht final : public Integrator {
         if (!build_tangent(system, t, h)) return false;
         fresh_tangent = true;
       }
-      const Eigen::VectorXd delta = m.lu.solve(-residual_);
+      const Eigen::VectorXd delta = m.factors.solve(-residual_);
       if (!delta.allFinite()) return false;
       a1_ += delta;
       previous = last_increment_;
@@ -165,7 +165,7 @@ class Hht final : public Integrator {
   }
 
   // The iteration matrix S = I - (1 + alpha) (beta h^2 f_q + gamma h f_qd) by coloured finite
-  // differences about (q1_, v1_), then its sparse LU factors.
+  // differences about (q1_, v1_), then its factors (iteration_matrix_factors.h).
   bool build_tangent(OdeSystem& system, double t, double h) {
     const Eigen::Index n = q1_.size();
     // the pattern from the model at this iterate (contacts and the rank of the constraints may
@@ -203,8 +203,11 @@ class Hht final : public Integrator {
     }
     const Eigen::SparseMatrix<double>& matrix = tangent_;
     IterationMatrix& m = matrices_[current_];
-    if (!m.lu.same_pattern(matrix)) m.lu.analyse(matrix);
-    if (!m.lu.factorize(matrix)) return false;
+    if (!m.factors.same_pattern(matrix)) {
+      system.free_masses(free_mass_);
+      m.factors.analyse(matrix, free_mass_);
+    }
+    if (!m.factors.factorize(matrix)) return false;
     m.valid = true;
     ++tangents_;
     return true;
@@ -283,12 +286,13 @@ class Hht final : public Integrator {
   SparsityPattern pattern_, trial_pattern_;
   std::vector<std::vector<int>> colours_;
   Eigen::SparseMatrix<double> tangent_;  // S, in the pattern's compressed columns
+  Eigen::VectorXd free_mass_;            // the system's free masses, which scale S's rows
   // The factorised iteration matrices of the last two step sizes. A run that lands on its output
   // times alternates between its dt and the shorter step that reaches the next output (dt =
   // 7.5e-5 s, output every 2e-4 s: two full steps and one of 5e-5 s); with one matrix, every
   // change of step size rebuilt it, at 88% of the steps of the flexible slider-crank.
   struct IterationMatrix {
-    SparseLu lu;
+    IterationMatrixFactors factors;
     double h = 0.0;
     long last_used = -1;
     bool valid = false;

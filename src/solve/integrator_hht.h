@@ -12,9 +12,10 @@
 // pattern comes from the model (bonds, force elements, contacts, the constraint groups; see
 // solve/jacobian_pattern.cpp) in time linear in its size, a system that cannot give it is
 // perturbed once per coordinate; the columns are then coloured so that columns sharing no row
-// are perturbed together (Curtis, Powell & Reid 1974), and S is factorised by sparse LU in a
-// symmetric fill-reducing order (solve/sparse_lu.h). For a
-// peridynamic body the colours are about twice the particles within two horizons, so a
+// are perturbed together (Curtis, Powell & Reid 1974), and S is factorised: the free
+// coordinates' block, scaled by their masses, by sparse Cholesky when it is symmetric and the
+// constrained rows read none of them, else S whole by sparse LU (solve/iteration_matrix_factors.h).
+// For a peridynamic body the colours are about twice the particles within two horizons, so a
 // tangent costs about a hundred force evaluations, not one per coordinate. The tangent is kept
 // from step to step while Newton converges quickly, one for each of the last two step sizes (a
 // run that lands on its output times alternates its dt with a shorter step).

@@ -173,4 +173,12 @@ bool Dynamics::jacobian_pattern(double t, const Eigen::VectorXd& q, SparsityPatt
   return true;
 }
 
+// A free row is g / m (the first case above): scaled by m it is a row of the forces' Jacobian.
+void Dynamics::free_masses(Eigen::VectorXd& mass) {
+  const int n = model_.coordinate_count;
+  mass.setZero(n);
+  for (int c = 0; c < n; ++c)
+    if (local_[c] < 0 && !model_.is_prescribed[c] && model_.mass[c] > 0.0) mass[c] = model_.mass[c];
+}
+
 }  // namespace periflex

@@ -2,7 +2,9 @@
 // drivers) at ten times the scene's explicit step, as a run takes it (Simulation::step): the
 // step that takes the Jacobian's pattern from the model, colours it, builds the tangent by
 // coloured finite differences, analyses and factorises it. Then the pattern and colouring alone,
-// and a later step, which keeps the tangent. One thread, CPU time.
+// a later step, which keeps the tangent, and the first step with the iteration matrix factorised
+// both ways (the free particles' block by Cholesky and the grips by LU, or all of it by LU). One
+// thread, CPU time.
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -12,6 +14,7 @@
 #include "core/sparsity_pattern.h"
 #include "scene/scene_loader.h"
 #include "solve/dynamics.h"
+#include "solve/integrator_hht.h"
 #include "solve/simulation.h"
 #include "solve/system_model.h"
 
@@ -64,6 +67,45 @@ void BM_HhtLaterStepNotchedPlate(benchmark::State& state) {
   for (auto _ : state) sim.step();
 }
 BENCHMARK(BM_HhtLaterStepNotchedPlate)->Unit(benchmark::kMillisecond)->Iterations(20);
+
+// The equations of motion without their free masses: HHT then factorises S whole by LU.
+class WithoutFreeMasses final : public OdeSystem {
+ public:
+  explicit WithoutFreeMasses(Dynamics& inner) : inner_(inner) {}
+  void derivative(double t, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, Eigen::VectorXd& qdd,
+                  Eigen::Vector3d& power) override {
+    inner_.derivative(t, q, qd, qdd, power);
+  }
+  bool jacobian_pattern(double t, const Eigen::VectorXd& q, SparsityPattern& pattern) override {
+    return inner_.jacobian_pattern(t, q, pattern);
+  }
+
+ private:
+  Dynamics& inner_;
+};
+
+// range(0): 1 the free block by Cholesky where S allows it (what a run does), 0 S whole by LU
+void BM_HhtFirstStepFactorisation(benchmark::State& state) {
+  omp_set_num_threads(1);
+  const SceneDef scene = hht_plate();
+  const auto model = build_system_model(scene);
+  for (auto _ : state) {
+    state.PauseTiming();
+    Dynamics dynamics(*model);
+    dynamics.set_correction(scene.solver.correction);
+    dynamics.analyse(0.0);
+    OdeState s;
+    s.q = model->q0;
+    s.qd = model->qd0;
+    WithoutFreeMasses whole(dynamics);
+    OdeSystem& system = state.range(0) == 1 ? static_cast<OdeSystem&>(dynamics) : whole;
+    auto hht = make_hht(scene.solver);
+    state.ResumeTiming();
+    hht->step(system, 0.0, scene.solver.dt, s);
+  }
+  state.SetLabel(state.range(0) == 1 ? "free block by Cholesky" : "whole by LU");
+}
+BENCHMARK(BM_HhtFirstStepFactorisation)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond)->Iterations(5);
 
 }  // namespace
 }  // namespace periflex

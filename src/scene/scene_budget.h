@@ -41,8 +41,9 @@ struct SceneBudget {
 // 34, 35 and 13: the program itself, then per particle and per stored neighbour (each bond held
 // from both ends) with the neighbours counted exactly. The integrators keep stage vectors
 // (per particle) and the implicit ones a sparse tangent and its factors (per neighbour).
-// The program's own 12 MB include about 4.5 MB of CHOLMOD, OpenBLAS and the Fortran run-time
-// they load (the flexible pendulum's peak went from 8.4 to 12.9 MB with them).
+// The program's own 12 MB include CHOLMOD, OpenBLAS and the Fortran run-time they load
+// (`periflex --version` holds 10.5 MB against 7.3 MB without them; the flexible pendulum's
+// short run peaks at 12.9 MB).
 constexpr double kProgramBytes = 12e6;
 constexpr double kBytesPerParticle = 64.0;
 constexpr double kBytesPerNeighbor = 30.0;

@@ -191,9 +191,4 @@ Eigen::VectorXd IterationMatrixFactors::solve(const Eigen::VectorXd& b) const {
   return x;
 }
 
-long IterationMatrixFactors::factor_entries() const {
-  if (!split_) return whole_lu_.factor_entries();
-  return cholesky_.factor_entries() + (other_.empty() ? 0 : other_lu_.factor_entries());
-}
-
 }  // namespace periflex

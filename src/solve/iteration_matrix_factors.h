@@ -39,8 +39,6 @@ class IterationMatrixFactors {
   Eigen::VectorXd solve(const Eigen::VectorXd& b) const;
   // Whether the last factorisation took the symmetric free block by Cholesky.
   bool split() const { return split_; }
-  // Entries of the factors.
-  long factor_entries() const;
 
   // Largest |a_ij - a_ji| / sqrt(a_ii a_jj) of the mass-scaled free block taken as symmetric
   // (and then averaged). The finite-difference tangent of the notched plate reaches 2.8e-7; a

@@ -5,7 +5,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkg-config
+  build-essential cmake ninja-build pkg-config file
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev gnuplot-nox libdeflate-dev
   libsuitesparse-dev libopenblas0-serial
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev

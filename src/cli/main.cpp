@@ -22,6 +22,7 @@
 #include "cli/study_command.h"
 #include "cli/sweep_command.h"
 #include "core/error.h"
+#include "core/resources.h"
 #include "core/thread_waiting.h"
 #include "study/study_def.h"
 #include "study/sweep_def.h"
@@ -131,7 +132,8 @@ void add_render_options(CLI::App* command, RunOptions& o) {
 
 int run_main(int argc, char** argv) {
   CLI::App app{"periflex: flexible multibody dynamics with peridynamic fracture, in 2D"};
-  app.set_version_flag("--version", std::string("periflex ") + PERIFLEX_VERSION);
+  // the version, and where the program found its shaders, colour maps and scenes
+  app.set_version_flag("--version", std::string("periflex ") + PERIFLEX_VERSION + "\nfiles: " + find_resource_root());
   app.require_subcommand(0, 1);
 
   RunOptions run;

@@ -131,21 +131,45 @@ free coordinate, such as the driven slider-crank, it recovers the exact kinemati
   flexible bodies, at steps tens to hundreds of times above the explicit critical step
   (tests/solve/hht_stiff_bar_test.cpp), where the explicit schemes cannot run at all.
 - Where implicit integration pays, measured: on the flexible slider-crank (steel rod, 400
-  particles, critical step 7.7e-7 s) over one revolution, against a converged Verlet run, HHT
-  at 7.5e-5 s (97 times the critical step) is off by 2e-4 of the excursion in 2.0 s and at
-  3e-5 s (39 times) by 3.7e-5 in 1.9 s, where Verlet at its stable step of 5e-7 s needs 6.9 s
-  (Baumgarte; 5.8e-7) or 14.4 s (projection; 2.9e-8): for any accuracy down to 2e-4 HHT gets
-  there 3.4-3.6 times faster (study below, quiet 2-core EPYC, one run at a time). Tighter, Verlet
-  wins: its stable step already gives 5.8e-7, and HHT levels off near 1.6e-6 (at 5e-6 and 4e-6 s,
-  5.3 and 7.0 s). The error HHT leaves is the rod's mid-span vibration (first bending mode near
-  500 Hz, a 2 ms period), which its large steps damp (energy error 1 % at 97x); on the slider
-  alone HHT at 97x matches Verlet (4.5e-8 against 5.9e-8 m over the first quarter turn). HHT
-  pays because its iteration matrix now lasts: a run lands on its output times (every 2e-4 s
-  here) by shortening the step before each, so the step size alternates (7.5e-5, 7.5e-5,
-  5e-5 s), and while HHT kept one matrix every change rebuilt it (88 % of the steps, each about
-  87 force evaluations and a sparse LU factorisation): the same run took 2.1-2.4 s of CPU time
-  for its first 0.03 s, now 0.55-0.67 s; 4.3-4.4 s at 2e-5 s, now 0.46-0.66 s. It keeps the
-  matrices of the last two step sizes (`tests/solve/integrator_hht_test.cpp`).
+  particles, critical step 7.7e-7 s) over one revolution, against a converged Verlet run. The
+  question is the error below which Verlet is faster. Verlet cannot take a step above 0.8 of the
+  critical one (`solver.dt_safety`), so its cheapest run is at 6e-7 s: 6.9e-7 of the excursion;
+  it can only buy more accuracy, never less cost. HHT buys any accuracy down to its floor near
+  1.6e-6 (the rod's mid-span vibration, below). Measured apart from the study, so that the two
+  are compared in the CPU time of one thread on the loaded machine (2-core AMD EPYC, load average
+  14-18 from other builds; wall times were 8-15 times the CPU times and meaningless): each run
+  `periflex run scenes/flexible_slider_crank.toml --threads 1` with the integrator, step and
+  correction set, HHT and Verlet runs alternated, two rounds; errors against Verlet with
+  projection at 5e-7 s (itself 2.9e-8 from the converged run), computed as the study does
+  (every 3e-3 s, both probes; the same figures as the study's table below where both have the
+  run):
+
+  | run | error / excursion | CPU time, two rounds |
+  | --- | --- | --- |
+  | HHT 2e-5 s (26x the critical step) | 1.63e-5 | 4.19 / 4.34 s |
+  | HHT 1e-5 s (13x) | 4.80e-6 | 6.15 / 6.51 s |
+  | HHT 7.5e-6 s (9.7x) | 2.86e-6 | 7.05 / 8.04 s |
+  | HHT 5e-6 s (6.5x) | 1.67e-6 | 11.54 / 11.76 s |
+  | Verlet 6e-7 s, Baumgarte (0.78 of the critical step) | 6.91e-7 | 12.46 / 12.74 s |
+  | Verlet 5e-7 s, Baumgarte (the scene's step) | 5.77e-7 | 16.65 / 13.39 s |
+
+  **Crossover: 1.7e-6 of the excursion** (0.22 um on the 0.131 m of the probes' travel). For any
+  accuracy looser than that HHT gets there faster: 1.06-1.10x at 1.7e-6 (HHT at 5e-6 s against
+  Verlet's cheapest run), 1.5-1.8x at 2.9e-6, about 2x at 4.8e-6, 3x at 1.6e-5, and more at its largest
+  steps (2e-4 at 7.5e-5 s in the study). For any accuracy tighter than 1.7e-6 Verlet is faster,
+  and HHT cannot reach it at all: at 4e-6 s it still gives 1.6e-6. So implicit integration is
+  faster than Verlet at equal accuracy only where that accuracy is coarser than 1.7e-6; Verlet's
+  own cheapest run is already 2.4 times more accurate than that. The error HHT leaves is the
+  rod's mid-span vibration (first bending mode near 500 Hz, a 2 ms period), which its large
+  steps damp (energy error 1 % at 97x); on the slider alone HHT at 97x matches Verlet (4.5e-8
+  against 5.9e-8 m over the first quarter turn). HHT pays as much as it does because its
+  iteration matrix now lasts: a run lands on its output times (every 2e-4 s here) by shortening
+  the step before each, so the step size alternates (7.5e-5, 7.5e-5, 5e-5 s), and while HHT kept
+  one matrix every change rebuilt it (88 % of the steps, each about 87 force evaluations and a
+  sparse LU factorisation): the same run took 2.1-2.4 s of CPU time for its first 0.03 s, now
+  0.55-0.67 s; 4.3-4.4 s at 2e-5 s, now 0.46-0.66 s. It keeps the matrices of the last two step
+  sizes (`tests/solve/integrator_hht_test.cpp`). The study's table below gives wall times of one
+  run at a time on a quiet machine, before these measurements.
 - IFToMM A01 (20 s of the 2000 s benchmark, against its closed form from a file): every
   integrator converges at its order (symplectic Euler 1.07, Verlet 1.92, RK4 4 to 5, HHT 1.91);
   Dormand-Prince is the fastest to 1e-3 and to 1e-6. The energy plot shows what each scheme

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "contact/contact_law.h"
+#include "contact/contact_manifold.h"
 #include "contact/shape_distance.h"
 
 namespace periflex {
@@ -50,20 +51,20 @@ RigidContact::Side RigidContact::make_side(int body, const BodyDef& def) {
       case ShapeDef::Kind::kNone:
         break;
     }
-    // the convex outline the separating axis test uses: a box's or convex polygon's corners; a
-    // bar's straight part (its core segment widened by its radius on both sides: where a bar
-    // crossing a shape with both ends outside it overlaps it); none for a circle or a concave
-    // polygon
-    std::vector<Vec2> hull;
+    // the convex core the manifold uses, with its rounding: a box's or convex polygon's corners;
+    // a bar's end centres and its radius; none for a circle (its centre alone is exact) or a
+    // concave polygon (its corners alone)
+    std::vector<Vec2> core;
+    double core_radius = 0.0;
     if (shape.kind == ShapeDef::Kind::kBox || shape.kind == ShapeDef::Kind::kPolygon) {
-      for (const Feature& f : features) hull.push_back(f.point);
-      if (!is_convex(hull)) hull.clear();
+      for (const Feature& f : features) core.push_back(f.point);
+      if (!is_convex(core)) core.clear();
     } else if (shape.kind == ShapeDef::Kind::kBar && shape.p2 != shape.p1) {
-      const Vec2 along = (shape.p2 - shape.p1).normalized();
-      const Vec2 side_way = shape.radius * Vec2(-along.y(), along.x());
-      hull = {shape.p1 - side_way, shape.p2 - side_way, shape.p2 + side_way, shape.p1 + side_way};
+      core = {shape.p1, shape.p2};
+      core_radius = shape.radius;
     }
-    side.hull.push_back(std::move(hull));
+    side.core.push_back(std::move(core));
+    side.core_radius.push_back(core_radius);
     side.features.push_back(std::move(features));
     Vec2 centre;
     double radius;
@@ -143,20 +144,21 @@ void RigidContact::apply(int a, int b, const Vec2& c, const Vec2& n, double dept
   if (points) points->push_back({c, a == i_.body ? force : Vec2(-force)});
 }
 
-bool RigidContact::cross_overlap(size_t s, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
-                                 Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const {
-  // both shapes' convex outlines where the bodies are now
+void RigidContact::manifold(size_t s, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd,
+                            Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const {
+  // both shapes' cores where the bodies are now
   const auto world = [&](const Side& side, size_t shape) {
     const Vec2 r(q[3 * side.body], q[3 * side.body + 1]);
     const Mat2 rot = rotation(q[3 * side.body + 2]);
     std::vector<Vec2> out;
-    for (const Vec2& p : side.hull[shape]) out.push_back(r + rot * p);
+    for (const Vec2& p : side.core[shape]) out.push_back(r + rot * p);
     return out;
   };
-  PolygonOverlap overlap;
-  if (!polygon_overlap(world(i_, s), world(j_, t), overlap)) return false;
-  apply(i_.body, j_.body, overlap.point, overlap.normal, overlap.depth, q, qd, g, points, sums);
-  return true;
+  ContactManifold m;
+  if (!convex_manifold(world(i_, s), i_.core_radius[s], world(j_, t), j_.core_radius[t], m)) return;
+  for (int k = 0; k < m.count; ++k)
+    apply(i_.body, j_.body, m.points[static_cast<size_t>(k)].point, m.normal, m.points[static_cast<size_t>(k)].depth,
+          q, qd, g, points, sums);
 }
 
 RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
@@ -170,20 +172,17 @@ RigidContact::Sums RigidContact::sweep(const Eigen::VectorXd& q, const Eigen::Ve
       const Vec2 gap = (r_i + rot_i * i_.bound_centre[s]) - (r_j + rot_j * j_.bound_centre[t]);
       const double reach = i_.bound_radius[s] + j_.bound_radius[t];
       if (gap.squaredNorm() > reach * reach) continue;
-      // a circle touches through its centre only; polygonal shapes through each other's corners
+      // a circle touches through its centre only; two convex shapes through their clipped
+      // manifold, however deep; a concave polygon through its corners
       if (i_.round(s)) {
         touch(i_, s, j_, t, q, qd, g, points, sums);
       } else if (j_.round(t)) {
         touch(j_, t, i_, s, q, qd, g, points, sums);
+      } else if (!i_.core[s].empty() && !j_.core[t].empty()) {
+        manifold(s, t, q, qd, g, points, sums);
       } else {
-        const long before = sums.active;
         touch(i_, s, j_, t, q, qd, g, points, sums);
         touch(j_, t, i_, s, q, qd, g, points, sums);
-        // no corner or bar end inside the other: two convex outlines may still cross (a plus
-        // sign, a bar across a box or another bar); then one contact pushes them apart along
-        // the axis of least penetration
-        if (sums.active == before && !i_.hull[s].empty() && !j_.hull[t].empty())
-          cross_overlap(s, t, q, qd, g, points, sums);
       }
     }
   }

@@ -11,14 +11,13 @@
 // body receives -F at the same point: forces and moments into both bodies' generalised forces,
 // so momentum and angular momentum are exchanged exactly.
 //
-// Pairs: circle-anything is exact (the circle's centre against the other shape); between two
-// polygonal shapes (box, polygon, bar) the corners and bar ends of each are tested against the
-// other, which finds every overlap in which a corner or end lies inside the other shape (every
-// strike, every resting face). Two convex outlines crossing with no corner or bar end inside
-// the other (boxes like a plus sign, a bar across a box or across another bar: a bar's outline
-// is its straight part) are found by the separating axis test over both outlines' edge normals
-// and pushed apart by one contact along the axis of least penetration, at the middle of the
-// overlap. A concave polygon crossed with no corner inside is not found.
+// Pairs: circle-anything is exact (the circle's centre against the other shape). Two convex
+// polygonal shapes (box, convex polygon, bar) touch through their clipped contact manifold
+// (contact/contact_manifold.h): up to two points on the face of least penetration, each with its
+// own depth, found the same way for a corner's strike, a face resting on a face and two long
+// shapes crossed deep in each other with no corner inside the other, so the law stays the
+// gradient of one energy while the same features touch. A concave polygon touches through its
+// corners against the other shape (one crossing it with no corner inside is not found).
 #pragma once
 
 #include <vector>
@@ -60,9 +59,10 @@ class RigidContact final : public ContactElement {
     std::vector<std::vector<Feature>> features;  // per shape
     std::vector<Vec2> bound_centre;
     std::vector<double> bound_radius;
-    // per shape: the convex outline for the separating axis test, counter-clockwise, body-fixed
-    // (empty: a circle or a concave polygon)
-    std::vector<std::vector<Vec2>> hull;
+    // per shape: the convex core of the manifold, counter-clockwise, body-fixed, and its
+    // rounding radius (empty: a circle or a concave polygon)
+    std::vector<std::vector<Vec2>> core;
+    std::vector<double> core_radius;
     bool round(size_t s) const { return shapes[s].kind == ShapeDef::Kind::kCircle; }
   };
   struct Sums {
@@ -77,11 +77,9 @@ class RigidContact final : public ContactElement {
   // One contact: depth along n (out of b towards a) at c; the law's force +F on a, -F on b.
   void apply(int a, int b, const Vec2& c, const Vec2& n, double depth, const Eigen::VectorXd& q,
              const Eigen::VectorXd* qd, Eigen::VectorXd* g, std::vector<ContactPoint>* points, Sums& sums) const;
-  // Shapes s of i and t of j, two convex outlines, crossing with no corner inside the other:
-  // one contact at the middle of the overlap along the axis of least penetration. False when
-  // they do not overlap.
-  bool cross_overlap(size_t s, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
-                     std::vector<ContactPoint>* points, Sums& sums) const;
+  // Shapes s of i and t of j, two convex cores: one contact per point of their manifold.
+  void manifold(size_t s, size_t t, const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
+                std::vector<ContactPoint>* points, Sums& sums) const;
   Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
              std::vector<ContactPoint>* points = nullptr) const;
 

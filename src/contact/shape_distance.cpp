@@ -91,64 +91,6 @@ ShapeDistance signed_distance(const ShapeDef& shape, const Vec2& p) {
   return {std::numeric_limits<double>::infinity(), Vec2::UnitX()};
 }
 
-bool polygon_overlap(const std::vector<Vec2>& a, const std::vector<Vec2>& b, PolygonOverlap& out) {
-  // the penetration along each outward edge normal of `from`: how far the deepest vertex of
-  // `into` lies behind that edge; the smallest over all edges of both is the way out
-  double best = std::numeric_limits<double>::infinity();
-  const auto axes = [&](const std::vector<Vec2>& from, const std::vector<Vec2>& into, double sign) {
-    for (size_t i = 0, j = from.size() - 1; i < from.size(); j = i++) {
-      const Vec2 edge = from[i] - from[j];
-      const double length = edge.norm();
-      if (length == 0.0) continue;
-      const Vec2 n(edge.y() / length, -edge.x() / length);  // outward for counter-clockwise
-      double deepest = std::numeric_limits<double>::infinity();
-      for (const Vec2& v : into) deepest = std::min(deepest, n.dot(v - from[j]));
-      const double depth = -deepest;
-      if (depth <= 0.0) return false;  // a separating axis
-      if (depth < best) {
-        best = depth;
-        // out of b towards a: b's own normal, or minus a's
-        out.normal = sign * n;
-      }
-    }
-    return true;
-  };
-  if (a.size() < 3 || b.size() < 3) return false;
-  if (!axes(b, a, 1.0) || !axes(a, b, -1.0)) return false;
-  out.depth = best;
-
-  // where the edges cross: the corners of the overlap when no vertex lies inside the other
-  Vec2 sum = Vec2::Zero();
-  int crossings = 0;
-  for (size_t i = 0, j = a.size() - 1; i < a.size(); j = i++) {
-    for (size_t k = 0, l = b.size() - 1; k < b.size(); l = k++) {
-      const Vec2 r = a[i] - a[j], s = b[k] - b[l];
-      const double denom = cross(r, s);
-      if (denom == 0.0) continue;  // parallel edges
-      const Vec2 w = b[l] - a[j];
-      const double t = cross(w, s) / denom, u = cross(w, r) / denom;
-      if (t < 0.0 || t > 1.0 || u < 0.0 || u > 1.0) continue;
-      sum += a[j] + t * r;
-      ++crossings;
-    }
-  }
-  if (crossings > 0) {
-    out.point = sum / static_cast<double>(crossings);
-  } else {
-    // one inside the other: the centre of the inner one
-    const auto inside = [](const Vec2& p, const std::vector<Vec2>& poly) {
-      for (size_t i = 0, j = poly.size() - 1; i < poly.size(); j = i++)
-        if (cross(poly[i] - poly[j], p - poly[j]) < 0.0) return false;
-      return true;
-    };
-    const std::vector<Vec2>& inner = inside(a.front(), b) ? a : b;
-    out.point = Vec2::Zero();
-    for (const Vec2& v : inner) out.point += v;
-    out.point /= static_cast<double>(inner.size());
-  }
-  return true;
-}
-
 bool is_convex(const std::vector<Vec2>& v) {
   const size_t n = v.size();
   if (n < 3) return false;

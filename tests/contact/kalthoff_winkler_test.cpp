@@ -1,6 +1,6 @@
 // The Kalthoff-Winkler experiment (scenes/kalthoff_winkler.toml and its rigid-projectile twin
 // scenes/kalthoff_winkler_projectile.toml) on a coarse grid (dx = 1 mm, 10000 particles, a
-// horizon of 3 mm): the crack must leave the notch tip at the experiment's angle.
+// horizon of 3 mm): the crack must kink from the notch tip at the angle measured at that grid.
 //
 // The angle is measured from the damage field at the end (90 us): the cracked particles
 // (damage >= 0.35, about half their bonds gone), in their reference places, 6 to 30 mm above the
@@ -10,13 +10,15 @@
 // The crack turns at the tip within a horizon and runs straight after it, so the fit is the
 // direction it leaves in, without the few millimetres by which its start sits off the tip.
 //
-// Tolerance: 60 to 75 degrees. The experiment gives about 70; peridynamic computations report 65
-// to 72 at finer grids. The angle grows as the grid is refined: measured 62.5 degrees at 1 mm
-// (this test, either load), 64.3 (prescribed velocity) and 65.7 (projectile) at the scene's
-// 0.5 mm (PERIFLEX_KW_FULL=1), so the coarse grid reads low by the few degrees that halving dx
-// moves it, and the lower bound sits that far under the published band. A crack along the notch
-// line (mode-II shear) would read 0 to 20 degrees, one straight up 90: the band tells the
-// tensile kink from either.
+// Tolerance at dx = 1 mm: 59 to 66 degrees, the angle measured at this grid (62.5 under either
+// load) +- 3.5 degrees, a little more than one halving of dx moves it (62.5 -> 64.3 prescribed,
+// 62.5 -> 65.7 projectile at 0.5 mm). It is not the experiment's band: the experiment gives about
+// 70 and peridynamic computations report 65 to 72 at finer grids, and the angle grows as the grid
+// is refined, so this coarse grid reads a few degrees under that band (docs/contact.md gives the
+// angle at 1, 0.5 and 0.25 mm). What the band catches: a change of the model that moves the crack
+// as much as a refinement does, a mode-II crack along the notch line (0 to 20 degrees) or one
+// straight up (90). Run at another grid (PERIFLEX_KW_FULL, PERIFLEX_KW_DX) the test checks only
+// that the crack is the tensile kink, 45 to 85 degrees, and prints the angle.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -39,10 +41,30 @@ struct CrackAngle {
 };
 
 // Runs the scene to its end at dx = 1 mm and fits the crack direction from the notch tip.
-// PERIFLEX_KW_FULL=1 runs the scene as written (dx = 0.5 mm).
+// PERIFLEX_KW_FULL=1 runs the scene as written (dx = 0.5 mm); PERIFLEX_KW_DX=<metres> any grid
+// whose spacing divides 25 mm into a whole even number, the step scaled with it (1.2e-7 s at 1 mm,
+// the ratio of the scenes' own 6e-8 s at 0.5 mm).
+bool at_another_grid() { return std::getenv("PERIFLEX_KW_FULL") != nullptr || std::getenv("PERIFLEX_KW_DX") != nullptr; }
+
+// The band the angle must lie in at the grid run (see the top of the file).
+void expect_angle_in_band(double degrees) {
+  if (at_another_grid()) {
+    EXPECT_GT(degrees, 45.0);
+    EXPECT_LT(degrees, 85.0);
+  } else {
+    EXPECT_GT(degrees, 59.0);
+    EXPECT_LT(degrees, 66.0);
+  }
+}
+
 CrackAngle crack_angle(const std::string& file) {
   std::vector<std::string> overrides{"flex_body.plate.grid_spacing=1e-3", "solver.dt=1.2e-7"};
   if (std::getenv("PERIFLEX_KW_FULL") != nullptr) overrides.clear();
+  if (const char* dx = std::getenv("PERIFLEX_KW_DX")) {
+    char dt[64];
+    std::snprintf(dt, sizeof dt, "solver.dt=%.17g", 1.2e-4 * std::atof(dx));
+    overrides = {std::string("flex_body.plate.grid_spacing=") + dx, dt};
+  }
   const SceneDef scene = load_scene(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/" + file, overrides);
   Simulation sim(scene);
   sim.initialize();
@@ -81,24 +103,22 @@ CrackAngle crack_angle(const std::string& file) {
   return out;
 }
 
-TEST(KalthoffWinkler, CrackLeavesTheNotchAtTheExperimentsAngleUnderPrescribedVelocity) {
+TEST(KalthoffWinkler, CrackKinksFromTheNotchAtTheAngleOfItsGridUnderPrescribedVelocity) {
   const CrackAngle a = crack_angle("kalthoff_winkler.toml");
   std::printf("Kalthoff-Winkler, prescribed velocity: crack at %.1f degrees (%d particles)\n", a.degrees,
               a.particles);
   RecordProperty("angle_degrees", std::to_string(a.degrees));
   ASSERT_GE(a.particles, 20) << "no crack from the notch tip";
-  EXPECT_GT(a.degrees, 60.0);
-  EXPECT_LT(a.degrees, 75.0);
+  expect_angle_in_band(a.degrees);
 }
 
-TEST(KalthoffWinkler, CrackLeavesTheNotchAtTheExperimentsAngleUnderARigidProjectile) {
+TEST(KalthoffWinkler, CrackKinksFromTheNotchAtTheAngleOfItsGridUnderARigidProjectile) {
   const CrackAngle a = crack_angle("kalthoff_winkler_projectile.toml");
   std::printf("Kalthoff-Winkler, rigid projectile: crack at %.1f degrees (%d particles)\n", a.degrees,
               a.particles);
   RecordProperty("angle_degrees", std::to_string(a.degrees));
   ASSERT_GE(a.particles, 20) << "no crack from the notch tip";
-  EXPECT_GT(a.degrees, 60.0);
-  EXPECT_LT(a.degrees, 75.0);
+  expect_angle_in_band(a.degrees);
 }
 
 }  // namespace

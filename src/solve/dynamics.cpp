@@ -9,7 +9,6 @@
 #include <stdexcept>
 
 #include "core/error.h"
-#include "coupling/rigid_flexible_joint.h"
 #include "solve/held_rotations.h"
 #include "solve/redundancy.h"
 
@@ -211,15 +210,15 @@ void Dynamics::analyse(double t) {
   // the metric of the large systems' rank monitor: a body carries the particles it holds
   // (a virtual body's mass is that of its particles), so its columns weigh what moves with it
   Eigen::VectorXd carried = Eigen::VectorXd::Zero(n);
-  for (const auto& block : model_.constraints) {
-    const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
-    if (!joint || joint->body() < 0) continue;
-    const int b = joint->body();
-    for (int p = 0; p < joint->particle_count(); ++p) {
-      const double mp = model_.mass[joint->particle_coordinates()[p]];
+  for (const Attachment& attachment : model_.attachments) {
+    const RigidFlexibleJoint& joint = *attachment.joint;
+    if (joint.body() < 0) continue;
+    const int b = joint.body();
+    for (int p = 0; p < joint.particle_count(); ++p) {
+      const double mp = model_.mass[joint.particle_coordinates()[p]];
       carried[3 * b] += mp;
       carried[3 * b + 1] += mp;
-      carried[3 * b + 2] += mp * joint->local_position(p).squaredNorm();
+      carried[3 * b + 2] += mp * joint.local_position(p).squaredNorm();
     }
   }
   selection_c_.resize(nc);
@@ -328,11 +327,11 @@ void Dynamics::choose_monitored_rows(double t, const Eigen::VectorXd& q) {
     for (const auto& e : all_) {
       if (local_[e.col()] >= 0) entries.emplace_back(e.row(), local_[e.col()], e.value());
     }
-    const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
-    for (int r = 0; r < block.constraint->rows(); ++r) {
-      is_attachment[block.first_row + r] = 1;
-      if (joint) particle_of_row[block.first_row + r] = joint->particle_coordinates()[r / 2];
-    }
+    for (int r = 0; r < block.constraint->rows(); ++r) is_attachment[block.first_row + r] = 1;
+  }
+  for (const Attachment& attachment : model_.attachments) {
+    const std::vector<int>& particles = attachment.joint->particle_coordinates();
+    for (int r = 0; r < attachment.joint->rows(); ++r) particle_of_row[attachment.first_row + r] = particles[r / 2];
   }
   std::vector<char> watched(rows, 0);
   for (const auto& block : model_.constraints) {

@@ -15,9 +15,9 @@
 #include "core/error.h"
 #include "core/parallel_chunks.h"
 #include "core/sim_time.h"
+#include "model/system_model.h"
 #include "solve/dynamics.h"
 #include "solve/integrator.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 
@@ -217,7 +217,7 @@ void Simulation::Impl::build_info() {
   if (fracture) mods.push_back("pd_fracture");
   if (bond_damping) mods.push_back("pd_bond_damping");
   if (global_damping) mods.push_back("pd_global_damping");
-  if (m.attachments > 0) mods.push_back("rigid_flexible_joints");
+  if (!m.attachments.empty()) mods.push_back("rigid_flexible_joints");
   if (!m.prescribed.empty()) mods.push_back("prescribed_motion");
   if (!m.contacts.empty()) mods.push_back("contact");
 

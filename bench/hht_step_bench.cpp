@@ -12,11 +12,11 @@
 #include <string>
 
 #include "core/sparsity_pattern.h"
+#include "model/system_model.h"
 #include "scene/scene_loader.h"
 #include "solve/dynamics.h"
 #include "solve/integrator_hht.h"
 #include "solve/simulation.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 namespace {

@@ -1,6 +1,6 @@
 # Run by the layering_includes test (tests/layering.cmake) with -DSOURCE_DIR=<src>: fails naming
 # every file that includes a header its layer must not.
-set(solver_layers core scene mbs pd coupling contact solve output)
+set(solver_layers core scene mbs pd coupling contact model solve output)
 set(gl_headers "GL/|GLFW/|EGL/|imgui|backends/imgui")
 set(failures "")
 
@@ -29,6 +29,37 @@ endforeach()
 # the renderer and the off-screen path draw without Dear ImGui (the window's panels only use it)
 foreach(folder render headless)
   check_folder(${folder} "imgui|backends/imgui|app/|cli/")
+endforeach()
+
+# the floors inside the solver, lowest first; a folder includes its own floor's folders and the
+# floors below, never one above (folders on one floor do not include each other either):
+#   core     small math, errors, time functions
+#   scene    TOML to definition structs
+#   mbs      joints, drivers, force elements (built from definitions)
+#   pd, coupling   peridynamic bodies; the rigid-flexible joint (a constraint of mbs)
+#   contact  contact elements (of rigid shapes and of peridynamic particles)
+#   model    the model built from all of the above, once
+#   solve    the stepper: reads the model, owns the state, fills snapshots
+#   output   checkpoint files, the run record, series.csv's columns (of the state and snapshots)
+set(solver_floors "core" "scene" "mbs" "pd coupling" "contact" "model" "solve" "output")
+set(above "")
+list(REVERSE solver_floors)
+foreach(floor IN LISTS solver_floors)
+  string(REPLACE " " ";" folders "${floor}")
+  # what this floor must not include: every floor above it, and its neighbours on the floor
+  foreach(folder IN LISTS folders)
+    set(forbidden ${above})
+    foreach(neighbour IN LISTS folders)
+      if(NOT neighbour STREQUAL folder)
+        list(APPEND forbidden ${neighbour})
+      endif()
+    endforeach()
+    if(forbidden)
+      list(JOIN forbidden "/|" pattern)
+      check_folder(${folder} "${pattern}/")
+    endif()
+  endforeach()
+  list(APPEND above ${folders})
 endforeach()
 
 if(failures)

@@ -14,6 +14,7 @@
 #include "core/error.h"
 #include "core/resources.h"
 #include "output/series_row.h"
+#include "scene/integrator_catalogue.h"
 #include "scene/scene_budget.h"
 #include "scene/toml_reader.h"
 
@@ -164,7 +165,8 @@ SceneDef load_run_scene(RunOptions& options) {
     fail("--snapshot-at", "t = " + format_number(*options.snapshot_at) + " s is after the end of the run (" +
                               format_number(scene.solver.end_time) + " s)");
   // VTK snapshots are files like frames
-  if (options.vtk_every > 0 && scene.solver.integrator != "dopri54") {
+  const IntegratorTraits* integrator = find_integrator(scene.solver.integrator);
+  if (options.vtk_every > 0 && (integrator == nullptr || !integrator->is_adaptive)) {
     const double files = scene.solver.end_time / scene.solver.dt / static_cast<double>(options.vtk_every);
     if (files > scene.limits.max_frames)
       fail("--vtk-every", "the run would write " + format_number(std::floor(files)) +

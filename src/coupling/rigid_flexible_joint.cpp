@@ -122,9 +122,9 @@ void RigidFlexibleJoint::body_reaction(const Eigen::VectorXd& q, const double* l
   }
 }
 
-std::unique_ptr<Constraint> make_rigid_flexible_joint(const std::string& name, int body,
-                                                      const std::vector<int>& particle_coordinates,
-                                                      const Eigen::VectorXd& q0) {
+std::unique_ptr<RigidFlexibleJoint> make_rigid_flexible_joint(const std::string& name, int body,
+                                                              const std::vector<int>& particle_coordinates,
+                                                              const Eigen::VectorXd& q0) {
   // an empty region is almost always a mistyped region box; say so rather than attach nothing
   if (particle_coordinates.empty()) {
     SourceLocation where;

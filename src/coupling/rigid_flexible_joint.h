@@ -58,8 +58,8 @@ class RigidFlexibleJoint : public Constraint {
 
 // Factory the system builder calls for each AttachmentDef (particles from PdBody::particles_in).
 // Throws InputError when the region holds no particle.
-std::unique_ptr<Constraint> make_rigid_flexible_joint(const std::string& name, int body,
-                                                      const std::vector<int>& particle_coordinates,
-                                                      const Eigen::VectorXd& q0);
+std::unique_ptr<RigidFlexibleJoint> make_rigid_flexible_joint(const std::string& name, int body,
+                                                              const std::vector<int>& particle_coordinates,
+                                                              const Eigen::VectorXd& q0);
 
 }  // namespace periflex

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "scene/grid_scan.h"
+#include "scene/integrator_catalogue.h"
 #include "scene/toml_reader.h"
 
 namespace periflex {
@@ -98,7 +99,8 @@ BodyCount count_particles_and_neighbours(const FlexBodyDef& flex, const GridFram
 void check_time(const SceneDef& scene, const RunPlan& plan, SceneBudget& budget) {
   const SolverDef& s = scene.solver;
   const LimitsDef& l = scene.limits;
-  const bool adaptive = s.integrator == "dopri54";
+  const IntegratorTraits* traits = find_integrator(s.integrator);
+  const bool adaptive = traits != nullptr && traits->is_adaptive;
   const bool dt_given = scene.origin.count("solver.dt") != 0;
   if (s.dt > s.end_time)
     refuse(scene.locate(dt_given ? "solver.dt" : "solver.end_time"),
@@ -210,9 +212,8 @@ void check_threads(const SceneDef& scene, const RunPlan& plan) {
 }  // namespace
 
 double integrator_bytes_per_particle(const std::string& integrator) {
-  if (integrator == "rk4" || integrator == "hht" || integrator == "generalized_alpha") return 96.0;
-  if (integrator == "dopri54") return 272.0;
-  return 0.0;
+  const IntegratorTraits* traits = find_integrator(integrator);
+  return traits != nullptr ? traits->stage_bytes_per_particle : 0.0;
 }
 
 int iteration_matrices(const SolverDef& solver) {
@@ -222,7 +223,8 @@ int iteration_matrices(const SolverDef& solver) {
 }
 
 double integrator_bytes_per_neighbor(const std::string& integrator) {
-  return integrator == "hht" || integrator == "generalized_alpha" ? 480.0 : 0.0;
+  const IntegratorTraits* traits = find_integrator(integrator);
+  return traits != nullptr ? traits->tangent_bytes_per_neighbor : 0.0;
 }
 
 int machine_cores() {

@@ -47,8 +47,8 @@ struct SceneBudget {
 constexpr double kProgramBytes = 12e6;
 constexpr double kBytesPerParticle = 64.0;
 constexpr double kBytesPerNeighbor = 30.0;
-// Stage vectors of an integrator, per particle: rk4 96, dopri54 272, hht 96 (0 for the
-// symplectic ones); and the implicit integrators' tangent, per stored neighbour.
+// Stage vectors of an integrator, per particle, and the implicit integrators' tangent, per stored
+// neighbour, from the integrator catalogue (0 for a name it lacks).
 double integrator_bytes_per_particle(const std::string& integrator);
 double integrator_bytes_per_neighbor(const std::string& integrator);
 // The iteration matrices an implicit integrator keeps (one per step size, see

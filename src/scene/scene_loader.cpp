@@ -12,6 +12,7 @@
 
 #include <toml++/toml.h>
 
+#include "scene/integrator_catalogue.h"
 #include "scene/scene_builder.h"
 #include "scene/scene_overrides.h"
 #include "scene/toml_reader.h"
@@ -20,7 +21,7 @@ namespace periflex {
 
 const std::vector<std::string>& scene_integrator_names() {
   // every integrator the solver has, and no other name: a scene that loads also runs
-  static const std::vector<std::string> names = {"symplectic_euler", "verlet", "rk4", "dopri54", "hht"};
+  static const std::vector<std::string> names = integrator_names();
   return names;
 }
 

@@ -40,7 +40,8 @@ SceneDef load_scene(const std::string& path, const std::vector<std::string>& ove
 SceneDef parse_scene(std::string_view toml_text, const std::string& display_path,
                      const std::vector<std::string>& overrides = {});
 
-// The integrator names a scene may ask for (solver.integrator).
+// The integrator names a scene may ask for (solver.integrator): those of the catalogue
+// (scene/integrator_catalogue.h).
 const std::vector<std::string>& scene_integrator_names();
 
 }  // namespace periflex

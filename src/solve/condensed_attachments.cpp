@@ -2,8 +2,6 @@
 
 #include <cmath>
 
-#include "coupling/rigid_flexible_joint.h"
-
 namespace periflex {
 
 void CondensedAttachments::build(const SystemModel& model, const std::vector<int>& active_index, bool enabled) {
@@ -16,20 +14,21 @@ void CondensedAttachments::build(const SystemModel& model, const std::vector<int
   // how many blocks reach each coordinate through rows that stay (a particle whose rows in a
   // joint were all left out as dependent is not reached by that joint)
   std::vector<int> blocks_on(model.coordinate_count, 0), coords;
-  for (const auto& block : model.constraints) {
-    if (const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get())) {
-      const int body = joint->body();
-      for (int p = 0; p < joint->particle_count(); ++p) {
-        const int row = block.first_row + 2 * p;
-        if (active_index[row] < 0 && active_index[row + 1] < 0) continue;
-        const int c = joint->particle_coordinates()[p];
-        ++blocks_on[c];
-        ++blocks_on[c + 1];
-      }
-      if (body >= 0)
-        for (int axis = 0; axis < 3; ++axis) ++blocks_on[3 * body + axis];
-      continue;
+  for (const Attachment& attachment : model.attachments) {
+    const RigidFlexibleJoint& joint = *attachment.joint;
+    const int body = joint.body();
+    for (int p = 0; p < joint.particle_count(); ++p) {
+      const int row = attachment.first_row + 2 * p;
+      if (active_index[row] < 0 && active_index[row + 1] < 0) continue;
+      const int c = joint.particle_coordinates()[p];
+      ++blocks_on[c];
+      ++blocks_on[c + 1];
     }
+    if (body >= 0)
+      for (int axis = 0; axis < 3; ++axis) ++blocks_on[3 * body + axis];
+  }
+  for (const auto& block : model.constraints) {
+    if (block.origin == ConstraintBlock::Origin::kAttachment) continue;  // counted above
     coords.clear();
     block.constraint->coordinates(coords);
     std::vector<int> seen;
@@ -43,27 +42,24 @@ void CondensedAttachments::build(const SystemModel& model, const std::vector<int
   }
 
   // particle by particle: one whose rows stay and that no other staying row reaches
-  for (size_t k = 0; k < model.constraints.size(); ++k) {
-    const ConstraintBlock& block = model.constraints[k];
-    if (block.origin != ConstraintBlock::Origin::kAttachment) continue;
-    const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
-    if (!joint) continue;
+  for (const Attachment& attachment : model.attachments) {
+    const RigidFlexibleJoint& joint = *attachment.joint;
     int condensed = 0;
-    for (int p = 0; p < joint->particle_count(); ++p) {
-      const int c = joint->particle_coordinates()[p];
-      const int row = block.first_row + 2 * p;
+    for (int p = 0; p < joint.particle_count(); ++p) {
+      const int c = joint.particle_coordinates()[p];
+      const int row = attachment.first_row + 2 * p;
       bool eligible = active_index[row] >= 0 && active_index[row + 1] >= 0;
       for (int axis = 0; axis < 2 && eligible; ++axis) {
         eligible = blocks_on[c + axis] == 1 && !model.is_prescribed[c + axis];
       }
       if (!eligible) continue;
-      const Vec2 s = joint->local_position(p);
-      particles_.push_back({c, joint->body(), row, s.x(), s.y()});
+      const Vec2 s = joint.local_position(p);
+      particles_.push_back({c, joint.body(), row, s.x(), s.y()});
       slaved_[c] = slaved_[c + 1] = 1;
       row_condensed_[row] = row_condensed_[row + 1] = 1;
       ++condensed;
     }
-    block_condensed_[k] = condensed == joint->particle_count();
+    block_condensed_[attachment.block] = condensed == joint.particle_count();
   }
 }
 

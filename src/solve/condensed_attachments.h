@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "mbs/constraint.h"
-#include "solve/system_model.h"
+#include "model/system_model.h"
 
 namespace periflex {
 

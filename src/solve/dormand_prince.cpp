@@ -29,10 +29,7 @@ constexpr std::array<double, kStages> kE = {71.0 / 57600,      0.0,          -71
 
 class DormandPrince final : public Integrator {
  public:
-  DormandPrince(double rtol, double atol) : rtol_(rtol), atol_(atol) {}
-  const std::string& name() const override { return name_; }
-  int order() const override { return 5; }
-  bool is_adaptive() const override { return true; }
+  DormandPrince(double rtol, double atol) : Integrator(IntegratorKind::kDopri54), rtol_(rtol), atol_(atol) {}
   void reset() override { fsal_valid_ = false; }
 
   void step(OdeSystem& system, double t, double dt, OdeState& s) override {
@@ -136,7 +133,6 @@ class DormandPrince final : public Integrator {
     return std::isfinite(error) ? error : 1e10;
   }
 
-  std::string name_ = "dopri54";
   double rtol_, atol_;
   double h_ = 0.0;  // internal step carried from one macro step to the next
   std::array<Eigen::VectorXd, kStages> kqd_, kqdd_;

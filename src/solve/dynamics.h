@@ -11,12 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "model/system_model.h"
 #include "solve/condensed_attachments.h"
 #include "solve/dense_constraint_solver.h"
 #include "solve/integrator.h"
 #include "solve/kkt_solver.h"
 #include "solve/sim_state.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 

@@ -38,9 +38,7 @@ void kick(Eigen::VectorXd& qd, const Eigen::VectorXd& qdd, double half_dt) {
 // separable Hamiltonians, one force evaluation per step.
 class SymplecticEuler final : public Integrator {
  public:
-  const std::string& name() const override { return name_; }
-  int order() const override { return 1; }
-  bool is_symplectic() const override { return true; }
+  SymplecticEuler() : Integrator(IntegratorKind::kSymplecticEuler) {}
   void step(OdeSystem& system, double t, double dt, OdeState& s) override {
     system.derivative(t, s.q, s.qd, qdd_, power_);
     s.qd += dt * qdd_;
@@ -50,7 +48,6 @@ class SymplecticEuler final : public Integrator {
   }
 
  private:
-  std::string name_ = "symplectic_euler";
   Eigen::VectorXd qdd_;
   Eigen::Vector3d power_;
 };
@@ -59,9 +56,7 @@ class SymplecticEuler final : public Integrator {
 // symplectic; the end acceleration is kept for the next step unless the state is edited.
 class VelocityVerlet final : public Integrator {
  public:
-  const std::string& name() const override { return name_; }
-  int order() const override { return 2; }
-  bool is_symplectic() const override { return true; }
+  VelocityVerlet() : Integrator(IntegratorKind::kVerlet) {}
   void step(OdeSystem& system, double t, double dt, OdeState& s) override {
     if (!cached_ || cached_time_ != t) system.derivative(t, s.q, s.qd, qdd_, power_);
     const Eigen::Vector3d power_start = power_;
@@ -91,7 +86,6 @@ class VelocityVerlet final : public Integrator {
   }
 
  private:
-  std::string name_ = "verlet";
   Eigen::VectorXd qdd_;
   Eigen::Vector3d power_;
   bool cached_ = false;
@@ -101,8 +95,7 @@ class VelocityVerlet final : public Integrator {
 // Classical fourth-order Runge-Kutta on (q, qd, work): four evaluations per step.
 class RungeKutta4 final : public Integrator {
  public:
-  const std::string& name() const override { return name_; }
-  int order() const override { return 4; }
+  RungeKutta4() : Integrator(IntegratorKind::kRk4) {}
   void step(OdeSystem& system, double t, double dt, OdeState& s) override {
     static constexpr std::array<double, 4> kC = {0.0, 0.5, 0.5, 1.0};
     static constexpr std::array<double, 4> kB = {1.0 / 6, 1.0 / 3, 1.0 / 3, 1.0 / 6};
@@ -135,7 +128,6 @@ class RungeKutta4 final : public Integrator {
   }
 
  private:
-  std::string name_ = "rk4";
   Eigen::VectorXd q0_, qd0_, dq_, dqd_, q_stage_, qd_stage_, qdd_;
   Eigen::Vector3d power_;
 };

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "solve/system_model.h"
+#include "model/system_model.h"
 
 namespace periflex {
 

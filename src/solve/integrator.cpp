@@ -1,8 +1,8 @@
-// The integrator registry: names as written in scene files, and the factory.
+// The integrator factory: builds the row of the catalogue (scene/integrator_catalogue.h) a name
+// picks.
 #include <stdexcept>
 
 #include "core/error.h"
-#include "scene/scene_loader.h"
 #include "solve/integrator.h"
 #include "solve/integrator_hht.h"
 
@@ -14,24 +14,26 @@ std::unique_ptr<Integrator> make_velocity_verlet();
 std::unique_ptr<Integrator> make_runge_kutta4();
 std::unique_ptr<Integrator> make_dormand_prince(const SolverDef& solver);
 
-// the scene schema owns the list, so a name it accepts is one make_integrator builds
-std::vector<std::string> integrator_names() { return scene_integrator_names(); }
-
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const SolverDef& solver) {
-  if (name == "symplectic_euler") return make_symplectic_euler();
-  if (name == "verlet") return make_velocity_verlet();
-  if (name == "rk4") return make_runge_kutta4();
-  if (name == "dopri54") return make_dormand_prince(solver);
-  if (name == "hht") {
-    try {
-      return make_hht(solver.hht_alpha);
-    } catch (const std::invalid_argument& e) {
-      throw InputError({"", 0, 0, "solver.hht_alpha"}, e.what());
-    }
+  const IntegratorTraits* traits = find_integrator(name);
+  if (traits == nullptr) {
+    std::string choices;
+    for (const auto& n : integrator_names()) choices += (choices.empty() ? "" : ", ") + n;
+    throw InputError({"", 0, 0, "solver.integrator"}, "unknown integrator '" + name + "'; choose one of " + choices);
   }
-  std::string choices;
-  for (const auto& n : integrator_names()) choices += (choices.empty() ? "" : ", ") + n;
-  throw InputError({"", 0, 0, "solver.integrator"}, "unknown integrator '" + name + "'; choose one of " + choices);
+  switch (traits->kind) {
+    case IntegratorKind::kSymplecticEuler: return make_symplectic_euler();
+    case IntegratorKind::kVerlet: return make_velocity_verlet();
+    case IntegratorKind::kRk4: return make_runge_kutta4();
+    case IntegratorKind::kDopri54: return make_dormand_prince(solver);
+    case IntegratorKind::kHht:
+      try {
+        return make_hht(solver.hht_alpha);
+      } catch (const std::invalid_argument& e) {
+        throw InputError({"", 0, 0, "solver.hht_alpha"}, e.what());
+      }
+  }
+  throw std::logic_error("make_integrator: a kind of the catalogue without a constructor");
 }
 
 }  // namespace periflex

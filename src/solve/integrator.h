@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/sparsity_pattern.h"
+#include "scene/integrator_catalogue.h"
 #include "scene/scene_def.h"
 #include "solve/sim_state.h"
 
@@ -44,18 +45,21 @@ class OdeSystem {
 
 class Integrator {
  public:
+  explicit Integrator(IntegratorKind kind) : traits_(integrator_traits(kind)) {}
   virtual ~Integrator() = default;
+  // Its row of the catalogue: name, order and traits (scene/integrator_catalogue.h).
+  const IntegratorTraits& traits() const { return traits_; }
   // Name as written in scene files and on the command line.
-  virtual const std::string& name() const = 0;
+  const std::string& name() const { return traits_.name; }
   // Global order of accuracy.
-  virtual int order() const = 0;
+  int order() const { return traits_.order; }
   // Explicit integrators are bound by the critical step of stiff (peridynamic) parts.
-  virtual bool is_explicit() const { return true; }
+  bool is_explicit() const { return traits_.is_explicit; }
   // Symplectic integrators (symplectic Euler, Verlet): a position projection after their
   // step also corrects the velocity by the same change over the step (SHAKE / RATTLE).
-  virtual bool is_symplectic() const { return false; }
+  bool is_symplectic() const { return traits_.is_symplectic; }
   // Adaptive integrators choose their own internal steps inside each call to step().
-  virtual bool is_adaptive() const { return false; }
+  bool is_adaptive() const { return traits_.is_adaptive; }
   // Advances s from t to t + dt.
   virtual void step(OdeSystem& system, double t, double dt, OdeState& s) = 0;
   // Forgets data cached from the previous step (the state was changed from outside).
@@ -87,10 +91,13 @@ class Integrator {
   virtual void save_steps(IntegratorCache&) const {}
   virtual void restore_steps(const IntegratorCache&) {}
   long accepted_ = 0, rejected_ = 0;
+
+ private:
+  const IntegratorTraits& traits_;
 };
 
-// Builds the integrator `name` (one of integrator_names()); rtol / atol from the solver
-// definition. Throws InputError naming the choices for an unknown name.
+// Builds the integrator `name` (a row of the catalogue, integrator_names()); rtol / atol from the
+// solver definition. Throws InputError naming the choices for an unknown name.
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const SolverDef& solver);
 
 }  // namespace periflex

@@ -22,11 +22,8 @@ constexpr double kNewtonTolerance = 1e-10;  // position increment / size of the 
 class Hht final : public Integrator {
  public:
   explicit Hht(double alpha)
-      : alpha_(alpha), gamma_(0.5 - alpha), beta_(0.25 * (1.0 - alpha) * (1.0 - alpha)) {}
+      : Integrator(IntegratorKind::kHht), alpha_(alpha), gamma_(0.5 - alpha), beta_(0.25 * (1.0 - alpha) * (1.0 - alpha)) {}
 
-  const std::string& name() const override { return name_; }
-  int order() const override { return 2; }
-  bool is_explicit() const override { return false; }
   // The stepper resets after a projection or broken bonds, which move the state by no more than
   // the step's own error: the algorithmic acceleration is then kept (dropping it would cost the
   // second order), and only a real edit of the state (checked at the next step) restarts.
@@ -264,7 +261,6 @@ class Hht final : public Integrator {
     throw NumericalError({"Newton residual", accepted_ + 1, t + h, cause.str(), remedy.str()});
   }
 
-  std::string name_ = "hht";
   double alpha_, gamma_, beta_;
 
   // the start of the step

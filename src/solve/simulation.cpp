@@ -15,9 +15,9 @@
 #include "core/error.h"
 #include "core/parallel_chunks.h"
 #include "core/sim_time.h"
+#include "model/system_model.h"
 #include "solve/dynamics.h"
 #include "solve/integrator.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 
@@ -133,10 +133,8 @@ struct Simulation::Impl {
   // step's weights then count only in part, would spoil the energy balance) and break them at
   // the accepted positions after the step.
   void choose_fracture_order() {
-    const std::string& name = integrator->name();
     using Timing = PdBody::BreakTiming;
-    const Timing timing =
-        name == "verlet" || name == "symplectic_euler" ? Timing::kInEvaluation : Timing::kAfterStep;
+    const Timing timing = integrator->traits().breaks_in_evaluation ? Timing::kInEvaluation : Timing::kAfterStep;
     for (auto& flex : model->flex_bodies) flex->set_break_timing(timing);
   }
 
@@ -217,7 +215,7 @@ void Simulation::Impl::build_info() {
   if (fracture) mods.push_back("pd_fracture");
   if (bond_damping) mods.push_back("pd_bond_damping");
   if (global_damping) mods.push_back("pd_global_damping");
-  if (m.attachments > 0) mods.push_back("rigid_flexible_joints");
+  if (!m.attachments.empty()) mods.push_back("rigid_flexible_joints");
   if (!m.prescribed.empty()) mods.push_back("prescribed_motion");
   if (!m.contacts.empty()) mods.push_back("contact");
 
@@ -360,8 +358,8 @@ void Simulation::Impl::advance(double t_end) {
       const bool shake = integrator->is_symplectic() && dynamics->correction().method == CorrectionDef::Method::kProjection;
       if (shake) step_start.q = state.q;
       // velocity Verlet's evaluation at the end of the step is followed by a half-kick
-      const bool verlet = integrator->name() == "verlet";
-      for (auto& flex : model->flex_bodies) flex->set_step_end(time + step, verlet ? 0.5 * step : 0.0);
+      const double kick = integrator->traits().closing_kick;
+      for (auto& flex : model->flex_bodies) flex->set_step_end(time + step, kick * step);
       integrator->step(*dynamics, time, step, state);
       time = t_next;
       dynamics->impose_prescribed(time, state.q, state.qd);
@@ -750,7 +748,10 @@ void Simulation::save_state_for_file(SimState& out) {
   save_state(out);
   IntegratorCache& cache = out.integrator;
   // only a cache that holds an acceleration to predict (velocity Verlet after a step)
-  if (cache.name != "verlet" || cache.vectors.size() != 1 || cache.scalars.empty() || cache.scalars[0] == 0.0) return;
+  const IntegratorTraits* saved_by = find_integrator(cache.name);
+  if (saved_by == nullptr || !saved_by->keeps_end_acceleration || cache.vectors.size() != 1 || cache.scalars.empty() ||
+      cache.scalars[0] == 0.0)
+    return;
   Eigen::VectorXd guess;
   accelerations_at(out, guess);
   restore_whole(out);  // the run goes on from the state saved, whatever the evaluation changed

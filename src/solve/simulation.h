@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/integrator_catalogue.h"
 #include "scene/scene_def.h"
 #include "solve/sim_state.h"
 #include "solve/snapshot.h"
@@ -151,8 +152,5 @@ class Simulation {
   void accelerations_at(const SimState& in, Eigen::VectorXd& out);
   std::unique_ptr<Impl> impl_;
 };
-
-// Names of the integrators the program offers, for help texts and validation.
-std::vector<std::string> integrator_names();
 
 }  // namespace periflex

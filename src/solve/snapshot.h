@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "model/marker_kind.h"
 #include "scene/scene_def.h"
 
 namespace periflex {
@@ -81,7 +82,7 @@ struct Snapshot {
   std::vector<double> particle_q, particle_qd;
 
   struct Marker {
-    enum class Kind { kRevolute, kTranslational, kRigid, kLink, kDriver, kAttachment };
+    using Kind = MarkerKind;
     Kind kind = Kind::kRevolute;
     Vec2 a = Vec2::Zero(), b = Vec2::Zero();  // one point, or two for links and sliders
     int body_a = 0, body_b = 0;  // the bodies (geometry indices, 0 the ground) carrying a and b

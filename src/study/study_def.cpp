@@ -6,6 +6,7 @@
 
 #include <toml++/toml.h>
 
+#include "scene/integrator_catalogue.h"
 #include "scene/toml_reader.h"
 #include "study/scene_reference.h"
 
@@ -38,12 +39,8 @@ void locate_keys(const ReadContext& context, const toml::table& table, const std
 }  // namespace
 
 int theoretical_order(const std::string& integrator) {
-  if (integrator == "symplectic_euler") return 1;
-  if (integrator == "verlet") return 2;
-  if (integrator == "rk4") return 4;
-  if (integrator == "dopri54") return 5;
-  if (integrator == "hht") return 2;
-  return 0;
+  const IntegratorTraits* traits = find_integrator(integrator);
+  return traits != nullptr ? traits->order : 0;
 }
 
 std::string format_g(double v) {
@@ -61,7 +58,10 @@ SourceLocation study_location(const StudyDef& study, const std::string& key) {
   return where;
 }
 
-bool is_adaptive_integrator(const std::string& integrator) { return integrator == "dopri54"; }
+bool is_adaptive_integrator(const std::string& integrator) {
+  const IntegratorTraits* traits = find_integrator(integrator);
+  return traits != nullptr && traits->is_adaptive;
+}
 
 StudyDef parse_study(const std::string& toml_text, const std::string& display_path) {
   ReadContext context;

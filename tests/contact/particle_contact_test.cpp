@@ -14,10 +14,10 @@
 
 #include "contact/particle_contact.h"
 #include "contact_scenes.h"
+#include "model/system_model.h"
 #include "scene/scene_loader.h"
 #include "solve/dynamics.h"
 #include "solve/integrator.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 namespace {

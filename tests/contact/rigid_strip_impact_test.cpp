@@ -20,10 +20,10 @@
 #include <cstdio>
 
 #include "contact_scenes.h"
+#include "model/system_model.h"
 #include "scene/scene_loader.h"
 #include "solve/dynamics.h"
 #include "solve/integrator.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 namespace {

@@ -4,8 +4,8 @@
 #include <gtest/gtest.h>
 
 #include "contact/particle_contact.h"
+#include "model/system_model.h"
 #include "scene/scene_loader.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 namespace {

@@ -7,9 +7,9 @@
 #include <random>
 
 #include "coupled_run.h"
+#include "model/system_model.h"
 #include "scene/scene_loader.h"
 #include "solve/dynamics.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 namespace {

@@ -8,9 +8,9 @@
 
 #include "coupled_run.h"
 #include "coupling/rigid_flexible_joint.h"
+#include "model/system_model.h"
 #include "scene/scene_loader.h"
 #include "solve/dynamics.h"
-#include "solve/system_model.h"
 
 namespace periflex {
 namespace {
@@ -26,15 +26,9 @@ TEST(GripReaction, VirtualBodyResultantBalancesCrossingBondForcesAndRegionInerti
   ASSERT_TRUE(dynamics.dropped_rows().empty());
 
   // the grip and its rows
-  const RigidFlexibleJoint* grip = nullptr;
-  int first_row = 0;
-  for (const ConstraintBlock& block : model->constraints) {
-    if (const auto* j = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get())) {
-      grip = j;
-      first_row = block.first_row;
-    }
-  }
-  ASSERT_NE(grip, nullptr);
+  ASSERT_FALSE(model->attachments.empty());
+  const RigidFlexibleJoint* grip = model->attachments.back().joint;
+  const int first_row = model->attachments.back().first_row;
   ASSERT_GE(grip->body(), 0);
 
   // a deformed state that still satisfies the joints: free particles moved by up to 0.2 mm (a

@@ -131,8 +131,8 @@ TEST(RigidFlexibleJoint, ParticlesFollowARigidMotionOfTheBody) {
 
 TEST(RigidFlexibleJoint, BodyReactionIsMinusJacobianTransposeTimesLambda) {
   const Eigen::VectorXd q0 = random_vector(kSize, 51, 1.0);
-  auto base = make_rigid_flexible_joint("grip", 1, particle_coordinates(), q0);
-  const auto& joint = dynamic_cast<const RigidFlexibleJoint&>(*base);
+  const auto made = make_rigid_flexible_joint("grip", 1, particle_coordinates(), q0);
+  const RigidFlexibleJoint& joint = *made;
   const Eigen::VectorXd q = q0 + random_vector(kSize, 52, 0.2);
   const Eigen::VectorXd lambda = random_vector(joint.rows(), 53, 5.0);
   Vec2 force;

@@ -1,9 +1,9 @@
-#include "solve/system_model.h"
+#include "model/system_model.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "contact/contact_factory.h"
+#include "model/contact_assembly.h"
 #include "core/error.h"
 #include "mbs/force_factory.h"
 #include "mbs/joint_factory.h"
@@ -46,11 +46,11 @@ static MarkerSource joint_marker(const JointDef& def, int bi, int bj) {
   m.a = BodyPoint{bi, def.point_i};
   m.b = BodyPoint{bj, def.point_j};
   switch (def.kind) {
-    case JointDef::Kind::kRevolute: m.kind = Snapshot::Marker::Kind::kRevolute; break;
-    case JointDef::Kind::kRigid: m.kind = Snapshot::Marker::Kind::kRigid; break;
-    case JointDef::Kind::kRevoluteRevolute: m.kind = Snapshot::Marker::Kind::kLink; break;
+    case JointDef::Kind::kRevolute: m.kind = MarkerKind::kRevolute; break;
+    case JointDef::Kind::kRigid: m.kind = MarkerKind::kRigid; break;
+    case JointDef::Kind::kRevoluteRevolute: m.kind = MarkerKind::kLink; break;
     case JointDef::Kind::kTranslational:
-    case JointDef::Kind::kRevoluteTranslational: m.kind = Snapshot::Marker::Kind::kTranslational; break;
+    case JointDef::Kind::kRevoluteTranslational: m.kind = MarkerKind::kTranslational; break;
   }
   return m;
 }
@@ -107,7 +107,7 @@ std::unique_ptr<SystemModel> build_system_model(const SceneDef& scene) {
     const int bj = relative ? m.body_index(def.body_j, def.where, "driver '" + def.name + "'") : -1;
     add_block(make_driver(def, bi, bj, m.q0), ConstraintBlock::Origin::kDriver, def.where);
     MarkerSource marker;
-    marker.kind = Snapshot::Marker::Kind::kDriver;
+    marker.kind = MarkerKind::kDriver;
     marker.a = BodyPoint{bi, def.point_i};
     marker.b = marker.a;
     m.markers.push_back(marker);
@@ -121,7 +121,7 @@ std::unique_ptr<SystemModel> build_system_model(const SceneDef& scene) {
     const int bj = two ? m.body_index(def.body_j, def.where, "force '" + def.name + "'") : -1;
     m.forces.push_back(make_force_element(def, bi, bj, m.q0));
     if (def.kind == ForceDef::Kind::kSpringDamper) {
-      m.spring_lines.push_back(MarkerSource{Snapshot::Marker::Kind::kLink, BodyPoint{bi, def.point_i},
+      m.spring_lines.push_back(MarkerSource{MarkerKind::kLink, BodyPoint{bi, def.point_i},
                                             BodyPoint{bj, def.point_j}});
     }
   }

@@ -1,8 +1,7 @@
 // The flexible part of the model: peridynamic bodies (their particles appended to q after the
 // rigid coordinates), their imposed motions, particle probes and the rigid-flexible joints.
 #include "core/error.h"
-#include "coupling/rigid_flexible_joint.h"
-#include "solve/system_model.h"
+#include "model/system_model.h"
 
 namespace periflex {
 
@@ -57,17 +56,16 @@ void build_flexible_part(const SceneDef& scene, SystemModel& m) {
     }
     auto joint = make_rigid_flexible_joint(def.name, body, coordinates, m.q0);
     // drawn at the centroid of the attached particles, carried by the body
-    const auto* rf = dynamic_cast<const RigidFlexibleJoint*>(joint.get());
     Vec2 centroid = Vec2::Zero();
-    if (rf) {
-      for (int k = 0; k < rf->particle_count(); ++k) centroid += rf->local_position(k);
-      centroid /= rf->particle_count();
-    }
+    for (int k = 0; k < joint->particle_count(); ++k) centroid += joint->local_position(k);
+    centroid /= joint->particle_count();
     MarkerSource marker;
-    marker.kind = Snapshot::Marker::Kind::kAttachment;
+    marker.kind = MarkerKind::kAttachment;
     marker.a = marker.b = BodyPoint{body, centroid};
     m.markers.push_back(marker);
 
+    // the joint joins the constraints, and the typed list of attachments points at it
+    m.attachments.push_back(Attachment{joint.get(), static_cast<int>(m.constraints.size()), m.constraint_rows});
     ConstraintBlock block;
     block.first_row = m.constraint_rows;
     block.origin = ConstraintBlock::Origin::kAttachment;
@@ -75,7 +73,6 @@ void build_flexible_part(const SceneDef& scene, SystemModel& m) {
     m.constraint_rows += joint->rows();
     block.constraint = std::move(joint);
     m.constraints.push_back(std::move(block));
-    ++m.attachments;
   }
 }
 

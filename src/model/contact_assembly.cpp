@@ -1,10 +1,9 @@
-#include "contact/contact_factory.h"
+#include "model/contact_assembly.h"
 
 #include "contact/particle_contact.h"
 #include "contact/rigid_contact.h"
 #include "contact/rigid_particle_contact.h"
-#include "coupling/rigid_flexible_joint.h"
-#include "solve/system_model.h"
+#include "model/system_model.h"
 
 namespace periflex {
 
@@ -14,10 +13,10 @@ namespace {
 std::vector<int> attached_particles(const SystemModel& model, int body, const PdBody& flex) {
   std::vector<int> out;
   const int first = flex.coordinate_offset(), end = first + 2 * flex.particle_count();
-  for (const auto& block : model.constraints) {
-    const auto* joint = dynamic_cast<const RigidFlexibleJoint*>(block.constraint.get());
-    if (joint == nullptr || joint->body() != body) continue;
-    for (int c : joint->particle_coordinates()) {
+  for (const Attachment& attachment : model.attachments) {
+    const RigidFlexibleJoint& joint = *attachment.joint;
+    if (joint.body() != body) continue;
+    for (int c : joint.particle_coordinates()) {
       if (c >= first && c < end) out.push_back((c - first) / 2);
     }
   }

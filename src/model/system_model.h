@@ -1,5 +1,7 @@
 // The assembled model: what a SceneDef declares, turned into state vectors and the lists of
-// constraint blocks and force elements the stepper works on. Built once per Simulation.
+// constraint blocks and force elements the stepper works on. Built once per Simulation, from the
+// parts the layers below make (mbs: joints, drivers, forces; pd: flexible bodies; coupling:
+// rigid-flexible joints; contact: contact elements); the stepper (src/solve) reads it.
 //
 // Coordinates: rigid body k owns q[3k .. 3k+2] = x, y, phi; the particles of the flexible
 // bodies follow, two each, one contiguous slice per flexible body.
@@ -11,12 +13,13 @@
 #include <vector>
 
 #include "contact/contact_element.h"
+#include "coupling/rigid_flexible_joint.h"
 #include "mbs/body_point.h"
 #include "mbs/constraint.h"
 #include "mbs/force_element.h"
+#include "model/marker_kind.h"
 #include "pd/pd_body.h"
 #include "scene/scene_def.h"
-#include "solve/snapshot.h"
 
 namespace periflex {
 
@@ -39,8 +42,16 @@ struct ProbePoint {
 
 // A drawn marker: one point (pins, welds, drivers, attachments) or two (links, sliders).
 struct MarkerSource {
-  Snapshot::Marker::Kind kind = Snapshot::Marker::Kind::kRevolute;
+  MarkerKind kind = MarkerKind::kRevolute;
   BodyPoint a, b;
+};
+
+// A rigid-flexible joint of the model, typed: the joint and its block in
+// SystemModel::constraints, which owns it.
+struct Attachment {
+  const RigidFlexibleJoint* joint = nullptr;
+  int block = 0;      // index into SystemModel::constraints
+  int first_row = 0;  // its first constraint row (two rows per particle follow)
 };
 
 struct SystemModel {
@@ -55,6 +66,9 @@ struct SystemModel {
 
   std::vector<ConstraintBlock> constraints;
   int constraint_rows = 0;
+  // the rigid-flexible joints among the constraints (their blocks' origin is kAttachment), in
+  // constraint order
+  std::vector<Attachment> attachments;
   std::vector<std::unique_ptr<ForceElement>> forces;  // springs, dampers, applied loads
   std::vector<MarkerSource> spring_lines;             // spring-dampers, for drawing
 
@@ -68,7 +82,7 @@ struct SystemModel {
   std::vector<ProbePoint> probes;
   std::vector<MarkerSource> markers;
 
-  int joints = 0, drivers = 0, attachments = 0;
+  int joints = 0, drivers = 0;
   double length_scale = 1.0;             // size of the initial configuration
 
   // Index of a rigid body by name; -1 for "ground". Throws InputError (at `where`) when unknown.

@@ -20,6 +20,11 @@ void require_material(const FlexBodyDef& def, bool ok, const std::string& key, c
   throw InputError(where, "flex body '" + def.name + "': " + message);
 }
 
+void warn_unbreakable(std::vector<std::string>& warnings) {
+  warnings.emplace_back(
+      "fracture is on but neither fracture_energy nor critical_stretch is given; bonds will not break");
+}
+
 std::unique_ptr<MaterialLaw> make_material_law(const FlexBodyDef& def, double horizon, double volume,
                                                std::vector<std::string>& warnings) {
   switch (def.material.model) {

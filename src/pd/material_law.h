@@ -117,6 +117,9 @@ class MaterialLaw {
 // Throws InputError at def.where, key "material.<key>", unless ok: for the laws' own checks.
 void require_material(const FlexBodyDef& def, bool ok, const std::string& key, const std::string& message);
 
+// Appends the warning that fracture is on but no criterion is given.
+void warn_unbreakable(std::vector<std::string>& warnings);
+
 // The critical stretch a law takes from the material: critical_stretch when given, else
 // from_energy(G0) when fracture_energy is given, else infinite (with a warning when fracture is on).
 template <typename FromEnergy>
@@ -124,9 +127,7 @@ double material_critical_stretch(const FlexBodyDef& def, FromEnergy&& from_energ
   const PdMaterialDef& mat = def.material;
   if (mat.critical_stretch > 0.0) return mat.critical_stretch;
   if (mat.fracture_energy > 0.0) return from_energy(mat.fracture_energy);
-  if (def.fracture)
-    warnings.push_back("fracture is on but neither fracture_energy nor critical_stretch is given; "
-                       "bonds will not break");
+  if (def.fracture) warn_unbreakable(warnings);
   return std::numeric_limits<double>::infinity();
 }
 

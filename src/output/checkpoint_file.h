@@ -14,8 +14,9 @@
 
 namespace periflex {
 
-// Format version of the files this program writes and reads.
-constexpr uint32_t kCheckpointFormat = 4;
+// Format version of the files this program writes and reads (5: flexible bodies carry their
+// bonds' softening histories).
+constexpr uint32_t kCheckpointFormat = 5;
 
 struct CheckpointHeader {
   uint32_t format = kCheckpointFormat;

@@ -202,6 +202,7 @@ std::vector<uint8_t> encode_state(const SimState& s) {
     w.put(f.pending_energy);
     w.put_planed(f.weighted_volume.data(), f.weighted_volume.size());
     w.put_planed(f.shear_coef.data(), f.shear_coef.size());
+    w.put_planed(f.bond_history.data(), f.bond_history.size());
   }
   // contacts
   w.put<uint64_t>(s.contacts.size());
@@ -274,6 +275,8 @@ SimState decode_state(const uint8_t* bytes, size_t size) {
     f.weighted_volume.assign(v.data(), v.data() + v.size());
     r.get_vector(v, "the weighted volumes");
     f.shear_coef.assign(v.data(), v.data() + v.size());
+    r.get_vector(v, "the bond histories");
+    f.bond_history.assign(v.data(), v.data() + v.size());
   }
   s.contacts.resize(r.count(8, "the contacts"));
   for (ContactCache& c : s.contacts) {

@@ -15,6 +15,8 @@ struct FlexState {
   double pending_energy = 0.0;
   // state-based bodies: the weighted volumes and shear coefficients over the intact bonds
   std::vector<double> weighted_volume, shear_coef;
+  // bilinear-softening bodies: the largest stretch each stored bond direction has reached past s0
+  std::vector<double> bond_history;
 };
 
 }  // namespace periflex

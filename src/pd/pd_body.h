@@ -1,10 +1,13 @@
-// A peridynamic flexible body (2D; bond-based, or ordinary state-based when its material says
-// model = "state_based", see state_based_kernel.h): its particles are point masses of the
-// multibody system, their coordinates a contiguous slice [x0 y0 x1 y1 ...] of q that
-// starts at coordinate_offset(). Bond forces enter g through ForceElement::add_forces.
+// A peridynamic flexible body (2D): its particles are point masses of the multibody system, their
+// coordinates a contiguous slice [x0 y0 x1 y1 ...] of q that starts at coordinate_offset(). Bond
+// forces enter g through ForceElement::add_forces. What a bond does is its material law's
+// (material_law.h: bond-based, ordinary state-based or bilinear softening, as the material's
+// `model` says); the body runs any law through the same loops.
 //
 // This header is the contract with the solver. Everything the solver needs is here;
-// the grid, neighbour search, bond storage and force kernel live in their own files.
+// the grid, neighbour search, bond storage, laws and force kernels live in their own files.
+// The body's own files: pd_body.cpp (this facade, the force evaluation), pd_body_build.cpp,
+// pd_fracture.cpp, pd_body_fields.cpp.
 #pragma once
 
 #include <memory>
@@ -55,8 +58,8 @@ class PdBody : public ForceElement {
   long bond_count() const;        // intact + broken, each pair once
   long broken_bond_count() const;
 
-  // Silling & Askari (2005) critical step of explicit integration, min over particles (for the
-  // state-based model through the bound in state_based_kernel.h).
+  // Critical step of explicit integration, min over particles, as the law bounds it (Silling &
+  // Askari 2005 for bond springs; the bound in state_based_kernel.h for the LPS).
   double critical_time_step() const;
 
   // ForceElement: bond forces, bond damping, global damping and loads into g.
@@ -66,14 +69,16 @@ class PdBody : public ForceElement {
   double dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const override;
   double external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t) const override;
   // The force on a particle moves with its own coordinates and those of the particles it holds
-  // intact bonds to; state-based, also with those of their bonded neighbours (their dilation).
+  // intact bonds to; for a law that reaches further (the LPS: their dilatation), also with those
+  // of their bonded neighbours.
   bool add_coupling(const Eigen::VectorXd& q, SparsityPattern& pattern) const override;
 
-  // Breaks every bond whose stretch exceeds s0 at q (never in no-fail regions) that no force
-  // evaluation broke yet, and reports the bonds the evaluations since the last call broke.
-  // Called once per accepted step, and only when fracture is on.
+  // The law's break test at q (never in no-fail regions): breaks every bond past s0 (past s1 for
+  // the softening law, whose bonds' histories grow here) that no force evaluation broke yet, and
+  // reports the bonds the evaluations since the last call broke. Called once per accepted step,
+  // and only when fracture is on.
   FractureUpdate update_fracture(const Eigen::VectorXd& q);
-  // Bond-based bonds breaking in the force evaluation (fracture on): a bond past s0 at positions
+  // Bonds breaking in the force evaluation (fracture on, a law that can: bond-based): a bond past s0 at positions
   // no evaluation has seen yet (after a drift or a projection) breaks in the first evaluation that
   // sees it and takes no part in its forces, exactly as a break after the step would. The solver
   // then only collects what the evaluations broke (take_evaluation_breaks): no pass over the
@@ -99,8 +104,9 @@ class PdBody : public ForceElement {
   void set_step_end(double t_end, double half_kick);
   bool fracture_enabled() const;
 
-  // The broken bonds and what follows from them, for saving a state; a restore heals the bonds
-  // broken since (from BondStore::broken_stiffness) and breaks the ones the state has broken.
+  // The broken bonds and the law's own fields (weighted volumes, bond histories), for saving a
+  // state; a restore heals the bonds broken since (from BondStore::broken_stiffness) and breaks
+  // the ones the state has broken.
   void save_state(FlexState& out) const;
   // Throws std::invalid_argument when the state belongs to a body with other bonds.
   void restore_state(const FlexState& in);
@@ -136,8 +142,8 @@ class PdBody : public ForceElement {
   double critical_stretch() const;
   // The bond arrays (CSR, both directions), for tests, benchmarks and diagnostics.
   const BondStore& bonds() const;
-  // Strain energy density [J/m^3] of each particle at q: (1/V_i) sum_j k |xi| s^2 / 4 bond-based,
-  // the LPS energy density W_i state-based.
+  // Strain energy density [J/m^3] of each particle at q, as the law defines it: (1/V_i) sum_j
+  // k |xi| s^2 / 4 bond-based, the LPS energy density W_i state-based.
   void strain_energy_density(const Eigen::VectorXd& q, std::vector<double>& out) const;
   // Heap bytes held by particles and bonds.
   size_t memory_bytes() const;

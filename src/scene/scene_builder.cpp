@@ -8,6 +8,7 @@
 
 #include "scene/contact_reader.h"
 #include "scene/function_reader.h"
+#include "scene/material_law_keys.h"
 #include "scene/scene_loader.h"
 #include "scene/shape_reader.h"
 
@@ -554,10 +555,13 @@ class SceneBuilder {
     // physically meaningful ranges: beyond them the critical step under- or overflows
     check_range(in, "youngs_modulus", m.youngs_modulus, 1e-3, 1e13, "Pa");
     check_range(in, "density", m.density, 1e-3, 1e6, "kg/m^3");
-    // one fracture criterion: energy or stretch
+    // one fracture criterion: energy or stretch (the softening law takes both: its area and its peak)
     const auto energy = in.optional_number("fracture_energy", Sign::kPositive);
     const auto stretch = in.optional_number("critical_stretch", Sign::kPositive);
-    if (energy && stretch) in.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
+    m.model = read_material_model(in);
+    const bool softening = m.model == PdMaterialDef::Model::kBilinearSoftening;
+    if (energy && stretch && !softening)
+      in.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
     if (fracture && !energy && !stretch)
       in.fail_missing("fracture_energy", "or critical_stretch; or set fracture = false in the flexible body");
     m.fracture_energy = energy.value_or(0.0);
@@ -565,9 +569,7 @@ class SceneBuilder {
     if (energy) check_range(in, "fracture_energy", *energy, 1e-12, 1e8, "J/m^2");
     if (stretch) check_range(in, "critical_stretch", *stretch, 1e-12, 10.0, "");
     m.plane_strain = in.choice("plane", {"stress", "strain"}, "stress") == "strain";
-    m.model = in.choice("model", {"bond_based", "state_based"}, "bond_based") == "state_based"
-                  ? PdMaterialDef::Model::kStateBased
-                  : PdMaterialDef::Model::kBondBased;
+    if (softening) read_softening_keys(in, m, energy, stretch);
     // the state-based model takes any admissible Poisson ratio: -1 < nu < 1/2, and in plane
     // stress also nu = 1/2 (an incompressible sheet thins instead; its 2D bulk modulus E/(2(1-nu)) stays finite)
     if (m.model == PdMaterialDef::Model::kStateBased) {

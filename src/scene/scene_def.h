@@ -141,8 +141,12 @@ struct PdMaterialDef {
   double critical_stretch = 0.0; // s0; > 0 overrides fracture_energy
   bool plane_strain = false;     // default plane stress
   // kBondBased: Poisson's ratio fixed by the model (1/3 plane stress, 1/4 plane strain);
-  // kStateBased: ordinary state-based (LPS) with the stated poisson_ratio (docs/peridynamics.md)
-  enum class Model { kBondBased, kStateBased } model = Model::kBondBased;
+  // kStateBased: ordinary state-based (LPS) with the stated poisson_ratio (docs/peridynamics.md);
+  // kBilinearSoftening: bond-based whose bond force falls linearly from s0 to zero at s1, the area
+  // under the curve set by fracture_energy (docs/peridynamics.md section 13)
+  enum class Model { kBondBased, kStateBased, kBilinearSoftening } model = Model::kBondBased;
+  // kBilinearSoftening: s1 / s0 (> 1); 0 when critical_stretch gives s0 instead
+  double softening_ratio = 0.0;
   // bond-based: < 0 when not stated, otherwise checked against 1/3 or 1/4; state-based: required
   double poisson_ratio = -1.0;
 };

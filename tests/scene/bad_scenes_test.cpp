@@ -69,6 +69,9 @@ const BadCase kBadCases[] = {
     {"state_based_nu_above_half_plane_stress.toml", 11, "flex_body.plate.material.poisson_ratio", "outside (-1, 0.5] in plane stress"},
     {"state_based_without_poisson_ratio.toml", 6, "flex_body.plate.material.poisson_ratio", "missing required key 'poisson_ratio'"},
     {"unknown_pd_model.toml", 10, "flex_body.plate.material.model", "correspondence"},
+    {"softening_without_ratio.toml", 6, "flex_body.plate.material.softening_ratio", "missing required key 'softening_ratio'"},
+    {"softening_ratio_and_critical_stretch.toml", 12, "flex_body.plate.material.softening_ratio", "not both"},
+    {"softening_ratio_one.toml", 11, "flex_body.plate.material.softening_ratio", "outside (1, 1000]"},
 };
 
 TEST(BadScenes, EachIsRefusedAtTheRightLineAndKey) {

@@ -53,8 +53,9 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
       std::printf("  %-22s'%s': state-based (LPS), %s, poisson_ratio = %g\n", "peridynamic model", flex.name.c_str(),
                   plane, mat.poisson_ratio);
     else
-      std::printf("  %-22s'%s': bond-based, %s, poisson_ratio = %s\n", "peridynamic model", flex.name.c_str(), plane,
-                  mat.plane_strain ? "1/4" : "1/3");
+      std::printf("  %-22s'%s': %s, %s, poisson_ratio = %s\n", "peridynamic model", flex.name.c_str(),
+                  mat.model == PdMaterialDef::Model::kBilinearSoftening ? "bond-based, bilinear softening" : "bond-based",
+                  plane, mat.plane_strain ? "1/4" : "1/3");
   }
   std::printf("  %-22s%d\n", "coordinates", m.coordinates);
   std::printf("  %-22s%d (%d redundant)\n", "constraint equations", m.constraint_equations, m.redundant_equations);

@@ -11,7 +11,7 @@ size_t state_bytes(const SimState& s) {
   for (const auto& v : s.integrator.vectors) bytes += sizeof(double) * static_cast<size_t>(v.size());
   for (const auto& f : s.flex) {
     bytes += sizeof(FlexState) + sizeof(uint64_t) * f.broken_bits.size();
-    bytes += sizeof(double) * (f.weighted_volume.size() + f.shear_coef.size());
+    bytes += sizeof(double) * (f.weighted_volume.size() + f.shear_coef.size() + f.bond_history.size());
   }
   for (const auto& c : s.contacts) {
     bytes += sizeof(ContactCache) + sizeof(int64_t) * c.row.size() + sizeof(int32_t) * c.col.size() +

@@ -70,6 +70,10 @@ TEST(CommandLine, CheckNamesEachFlexibleBodysModel) {
   EXPECT_EQ(strain.exit_code, 2) << strain.output;
   EXPECT_NE(strain.output.find("flex_body.state_based.material.poisson_ratio"), std::string::npos) << strain.output;
   EXPECT_NE(strain.output.find("plane strain"), std::string::npos) << strain.output;
+  // a softening body is named as the bond-based law with bilinear softening it is
+  const auto softening = run_periflex("check " + scene("concrete_beam_3pb.toml"));
+  ASSERT_EQ(softening.exit_code, 0) << softening.output;
+  EXPECT_NE(softening.output.find(": bond-based, bilinear softening, plane"), std::string::npos) << softening.output;
   // the same value is admissible in plane stress
   EXPECT_EQ(run_periflex("check " + scene("notched_plate_models.toml") +
                          " --set flex_body.state_based.material.poisson_ratio=0.5")

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <thread>
 
-#include "scene/grid_scan.h"
 #include "core/sim_time.h"
+#include "scene/grid_scan.h"
 #include "scene/toml_reader.h"
 
 namespace periflex {
@@ -125,22 +125,26 @@ void check_time(const SceneDef& scene, const RunPlan& plan, SceneBudget& budget)
                           " s), more than limits.max_steps = " + format_count(l.max_steps) +
                           "; raise dt, lower end_time, or raise limits.max_steps");
 
-  // rows of series.csv: one at each output time, plus the last state when the end is not one;
-  // an interval shorter than dt writes a row after every step. Without an interval, a row every
-  // tenth step.
+  // rows of series.csv: one at each output time, plus the last state when the end is not one.
+  // Without an interval, a row every tenth step.
   const double interval = s.output_interval > 0.0 ? s.output_interval : 10.0 * s.dt;
-  if (adaptive && !(s.output_interval > 0.0)) {
+  const bool rows_given = s.output_interval > 0.0;
+  if (adaptive && !rows_given) {
     budget.rows = 0.0;
-  } else if (interval < s.dt * (1 - 1e-9)) {
-    budget.rows = budget.steps + 1;
   } else {
     budget.rows = schedule_instants(s.end_time, interval, s.dt);
     if (!time_reached((budget.rows - 1) * interval, s.end_time, s.dt)) budget.rows += 1;
   }
+  // an interval shorter than a fixed step writes a row after every step, but the schedule still
+  // counts its output times, so they are what is bounded (a tiny interval is refused, not run)
+  const bool every_step = !adaptive && interval < s.dt * (1 - 1e-9);
   if (!(budget.rows <= l.max_output_rows))
-    refuse(s.output_interval > 0.0 ? scene.locate("solver.output_interval") : steps_key,
-           "series.csv would get " + format_count(budget.rows) + " rows, more than limits.max_output_rows = " +
-               format_count(l.max_output_rows) + "; raise solver.output_interval or limits.max_output_rows");
+    refuse(rows_given ? scene.locate("solver.output_interval") : steps_key,
+           (every_step ? "an output interval of " + format_number(interval) + " s (shorter than dt = " +
+                             format_number(s.dt) + " s) counts " + format_count(budget.rows) + " output times"
+                       : "series.csv would get " + format_count(budget.rows) + " rows") +
+               ", more than limits.max_output_rows = " + format_count(l.max_output_rows) +
+               "; raise solver.output_interval or limits.max_output_rows");
 
   // rendered frames: only an interval the user gave can be shorter than a step (the default is
   // a whole number of steps)

@@ -57,9 +57,11 @@ TEST(FrameInterval, DefaultOnARunShorterThanAHundredStepsIsOneStepNotARefusal) {
 
 // dt = 1.5 ms does not divide end / 100 = 5 ms: frames every 3 steps (4.5 ms), and the run takes
 // the steps it takes without frames (a frame every 5 ms would cut steps short to land on it).
+// Rows every 10 steps (15 ms), so that they cut none either; the end (0.5 s, 333.3 steps) does.
 TEST(FrameInterval, DefaultIsWholeStepsSoFramesCutNoStep) {
   const auto dir = fresh_directory("default_frames_whole_steps");
-  const std::vector<std::string> common = {"run", scene("pendulum.toml"), "--until", "0.5", "--dt", "1.5e-3", "--quiet"};
+  const std::vector<std::string> common = {"run", scene("pendulum.toml"), "--until", "0.5", "--dt", "1.5e-3",
+                                           "--set", "solver.output_interval=0.015", "--quiet"};
   std::vector<std::string> plain = common, drawn = common;
   plain.insert(plain.end(), {"--out", (dir / "plain").string()});
   drawn.insert(drawn.end(), {"--render", "--size", "64x48", "--frames", (dir / "frames").string(), "--out",
@@ -70,6 +72,8 @@ TEST(FrameInterval, DefaultIsWholeStepsSoFramesCutNoStep) {
   ASSERT_EQ(b.exit_code, 0) << b.output;
   const auto plain_summary = read_summary(dir / "plain" / "summary.json");
   const auto drawn_summary = read_summary(dir / "drawn" / "summary.json");
+  // the whole steps and the one cut short at the end
+  EXPECT_EQ(plain_summary["steps"].get<long>(), static_cast<long>(std::ceil(0.5 / 1.5e-3)));
   EXPECT_EQ(drawn_summary["steps"].get<long>(), plain_summary["steps"].get<long>());
   EXPECT_EQ(drawn_summary["frames_written"].get<long>(), default_frames(0.5, 1.5e-3));
   long pngs = 0;

@@ -95,7 +95,9 @@ TEST(MovieFormat, WriterPutsEveryFrameInEachFormatThisFfmpegWrites) {
     ASSERT_TRUE(fs::exists(path)) << format.extension;
     EXPECT_EQ(movie_file_frames(find_ffmpeg(), path.string()), 29) << format.extension;
     const long decoded = decoded_frames(path);
-    if (decoded >= 0) EXPECT_EQ(decoded, 29) << format.extension;
+    if (decoded >= 0) {
+      EXPECT_EQ(decoded, 29) << format.extension;
+    }
     // the temporary file was renamed, not copied
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1) << format.extension;
   }

@@ -151,7 +151,7 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
     set_tests_properties(gui_script_plot_series PROPERTIES LABELS gui TIMEOUT 120 RESOURCE_LOCK xvfb)
   endif()
 
-  # real input: recording from the Export panel (PNG folder, MP4, MP4 ended by Ctrl-C in the
+  # real input: recording from the Export panel (PNG folder, MP4, GIF, MP4 ended by Ctrl-C in the
   # terminal), the keys, a live setting
   # typed into its field, the mouse spring on the notched plate, the deformation slider and key,
   # the teaching aids (F1 list, description, pace, reload of a scene file saved on disk), the
@@ -159,7 +159,7 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   # exported; two series in one plot, exported and compared with series.csv), the knife, the
   # inspector of a rigid body clicked, the drawing of active contacts (key and box), the history
   # (Left, Right, the timeline slider, resume)
-  foreach(case record_png record_plot record_mp4 record_interrupted keys damping refusal spring deform teach inspect plot
+  foreach(case record_png record_plot record_mp4 record_gif record_interrupted keys damping refusal spring deform teach inspect plot
                plot_series knife body contacts history)
     gui_input_test(${case})
   endforeach()

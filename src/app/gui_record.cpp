@@ -1,7 +1,8 @@
 // Recording from the window: the simulation thread publishes snapshots at a fixed simulated-time
 // interval; the main thread draws each, with the overlay a screenshot shows (scene name, time,
 // colour legend) but without the panels, into an off-screen framebuffer of the window's size and
-// hands the pixels to a frame writer (PNG sequence or MP4 through ffmpeg).
+// hands the pixels to a frame writer (PNG sequence, or a movie through ffmpeg in the format its
+// extension names: io/movie_format.h).
 #include <algorithm>
 #include <exception>
 #include <stdexcept>
@@ -10,6 +11,7 @@
 #include "app/view_fit.h"
 #include "render/gl.h"
 #include "io/image.h"
+#include "io/movie_format.h"
 
 namespace periflex {
 
@@ -18,31 +20,29 @@ namespace {
 // recorded frames drawn per window frame, so recording never stalls the interface for long
 constexpr int kRecordedPerFrame = 4;
 
-bool ends_with(const std::string& s, const std::string& tail) {
-  return s.size() >= tail.size() && s.compare(s.size() - tail.size(), tail.size(), tail) == 0;
-}
-
 }  // namespace
 
 void GuiApp::start_recording(const std::string& path, double interval, double fps, int fb_width,
                              int fb_height) {
   if (writer_) stop_recording();
   if (path.empty() || interval <= 0.0) {
-    record_message_ = "give a folder or .mp4 file and a positive interval";
+    record_message_ = "give a folder or a movie file (.mp4, .webm, .mkv, .gif, .avi) and a positive interval";
     return;
   }
   // even sizes: movies need them
   record_width_ = std::max(2, fb_width & ~1);
   record_height_ = std::max(2, fb_height & ~1);
   try {
-    if (ends_with(path, ".mp4")) {
+    // a movie extension makes a movie (its format checked against this ffmpeg); anything else
+    // names the folder of a PNG sequence
+    if (movie_format_of(path)) {
       if (find_ffmpeg().empty()) {
         record_message_ = "ffmpeg is not installed (not on PATH): install it, or record a PNG sequence "
                           "by giving a folder name";
         log_.add("recording: " + record_message_);
         return;
       }
-      writer_ = std::make_unique<Mp4Writer>(path, record_width_, record_height_, std::max(1.0, fps));
+      writer_ = std::make_unique<MovieWriter>(path, record_width_, record_height_, std::max(1.0, fps));
     } else {
       writer_ = std::make_unique<PngSequenceWriter>(path);
     }

@@ -3,12 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <sstream>
 
 #include "cli/interrupt.h"
 #include "cli/run_option_checks.h"
 #include "core/error.h"
+#include "io/frame_writer.h"
+#include "io/movie_format.h"
 
 #ifdef PERIFLEX_WITH_GUI
 #include "app/gui.h"
@@ -33,14 +33,9 @@ bool render_available() {
 }
 
 bool ffmpeg_available() {
-  const char* path = std::getenv("PATH");
-  if (!path) return false;
-  std::stringstream dirs(path);
-  std::string dir;
-  while (std::getline(dirs, dir, ':')) {
-    if (!dir.empty() && std::filesystem::exists(std::filesystem::path(dir) / "ffmpeg")) return true;
-  }
-  return false;
+  // an ffmpeg on PATH that can write the default movie (H.264 in MP4)
+  const std::string ffmpeg = find_ffmpeg();
+  return !ffmpeg.empty() && ffmpeg_abilities(ffmpeg).can_write(*movie_format_of("movie.mp4"));
 }
 
 bool parse_window_size(const std::string& text, int& width, int& height) {

@@ -107,13 +107,15 @@ void add_deform_option(CLI::App* command, std::string& deform) {
 // Off-screen rendering options shared by `run` and the default headless recording.
 void add_render_options(CLI::App* command, RunOptions& o) {
   command->add_flag("--render", o.render, "Render frames off-screen (EGL) while running");
-  command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default end time / 100)");
+  command->add_option("--frame-every", o.frame_every, "Simulated seconds between frames (default: end time / 100, rounded down to whole steps; at least one step)");
   command->add_option("--size", o.size_text, "Frame size as WxH (default 1280x720)")->type_name("WxH");
   command->add_option("--samples", o.samples,
                       "Multisamples per pixel, 1 = off (default: 4, or off for 100k particles and more)")
       ->check(CLI::Range(1, 16));
   command->add_option("--frames", o.frames_dir, "Directory for the PNG frames");
-  command->add_option("--movie", o.movie_path, "MP4 movie written through ffmpeg");
+  command->add_option("--movie", o.movie_path,
+                      "Movie written through ffmpeg, its format by the extension: .mp4 (H.264), .webm (VP9), "
+                      ".mkv (H.264), .gif, .avi (MPEG-4)");
   command->add_option("--fps", o.fps, "Playback frame rate of the movie")->check(CLI::Range(1.0, 240.0));
   command->add_option("--snapshot-at", o.snapshot_at, "Simulated time of a single screenshot");
   command->add_option("--screenshot", o.screenshot_path, "PNG file for --snapshot-at");

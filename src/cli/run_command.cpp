@@ -178,7 +178,7 @@ int run_command(const RunOptions& requested) {
   const double dt = scene.solver.dt;
   Schedule rows{scene.solver.output_interval > 0 ? scene.solver.output_interval : 10 * dt};
   Schedule frame_times;
-  if (options.render) frame_times.interval = options.frame_every > 0 ? options.frame_every : end_time / 100.0;
+  if (options.render) frame_times.interval = frame_interval(options, scene.solver);
   std::optional<double> snapshot_time = options.snapshot_at;
   // checkpoints land on k * T like rows; a restart without --checkpoint-every still lands on the
   // instants of the run that wrote its file (writing none), so its steps are that run's steps

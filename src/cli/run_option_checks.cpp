@@ -13,6 +13,7 @@
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "core/resources.h"
+#include "io/frame_writer.h"
 #include "output/series_row.h"
 #include "scene/integrator_catalogue.h"
 #include "scene/scene_budget.h"
@@ -66,6 +67,13 @@ void check_writable_file(const std::string& flag, const std::string& path) {
   if (parent.empty()) parent = ".";
   if (!fs::is_directory(parent, ec)) fail(flag, "the folder of '" + path + "' does not exist");
   check_writable_folder(flag, parent.string());
+}
+
+// The movie's file: writable, and a format (by its extension) the installed ffmpeg can write,
+// refused before anything is simulated instead of by ffmpeg after the run.
+void check_movie_path(const std::string& path) {
+  check_writable_file("--movie", path);
+  check_movie_output(path, "--movie");
 }
 
 void check_number(const std::string& flag, double value, double lo, double hi, const std::string& what) {
@@ -145,6 +153,17 @@ std::vector<std::string> colormap_names() {
   return names;
 }
 
+double frame_interval(const RunOptions& options, const SolverDef& solver) {
+  if (options.frame_every > 0) return options.frame_every;
+  const double hundredth = solver.end_time / 100.0;
+  // an adaptive integrator has no step to land on
+  if (solver.integrator == "dopri54") return hundredth;
+  // whole steps, so that no step is cut short to land on a frame (the tolerance keeps a
+  // hundredth that is a multiple of dt but for round-off from losing a step)
+  const double steps = std::max(1.0, std::floor(hundredth / solver.dt * (1 + 1e-9)));
+  return steps * solver.dt;
+}
+
 SceneDef load_run_scene(RunOptions& options) {
   check_run_values(options);
 
@@ -155,8 +174,10 @@ SceneDef load_run_scene(RunOptions& options) {
   SceneDef scene = load_scene_with_options(options.scene_path, options.overrides, options.until, options.dt,
                                            options.integrator);
   if (options.render) {
-    plan.frame_every = options.frame_every > 0 ? options.frame_every : scene.solver.end_time / 100.0;
-    plan.frame_every_where = flag_location("--frame-every");
+    plan.frame_every = frame_interval(options, scene.solver);
+    plan.frame_every_given = options.frame_every > 0;
+    plan.frame_every_where =
+        plan.frame_every_given ? flag_location("--frame-every") : scene.locate("limits.max_frames");
   }
   check_scene_budget(scene, plan);
   // the columns of this run's series.csv follow from the scene: no model is built for them
@@ -169,22 +190,22 @@ SceneDef load_run_scene(RunOptions& options) {
   if (options.vtk_every > 0 && (integrator == nullptr || !integrator->is_adaptive)) {
     const double files = scene.solver.end_time / scene.solver.dt / static_cast<double>(options.vtk_every);
     if (files > scene.limits.max_frames)
-      fail("--vtk-every", "the run would write " + format_number(std::floor(files)) +
-                              " VTK snapshots, more than limits.max_frames = " + format_number(scene.limits.max_frames));
+      fail("--vtk-every", "the run would write " + format_count(std::floor(files)) +
+                              " VTK snapshots, more than limits.max_frames = " + format_count(scene.limits.max_frames));
   }
 
   // every output path, before anything is computed
   if (options.out_dir.empty()) options.out_dir = "out/" + safe_folder_name(scene.name);
   check_writable_folder("--out", options.out_dir);
   if (!options.frames_dir.empty()) check_writable_folder("--frames", options.frames_dir);
-  if (!options.movie_path.empty()) check_writable_file("--movie", options.movie_path);
+  if (!options.movie_path.empty()) check_movie_path(options.movie_path);
   if (!options.screenshot_path.empty()) check_writable_file("--screenshot", options.screenshot_path);
   if (options.checkpoint_every > 0.0) {
     // as many files as frames at most
     const double files = scene.solver.end_time / options.checkpoint_every;
     if (files > scene.limits.max_frames)
-      fail("--checkpoint-every", "the run would write " + format_number(std::floor(files)) +
-                                     " checkpoints, more than limits.max_frames = " + format_number(scene.limits.max_frames));
+      fail("--checkpoint-every", "the run would write " + format_count(std::floor(files)) +
+                                     " checkpoints, more than limits.max_frames = " + format_count(scene.limits.max_frames));
     if (options.checkpoint_dir.empty()) options.checkpoint_dir = options.out_dir + "/checkpoints";
     check_writable_folder("--checkpoint-dir", options.checkpoint_dir);
   }
@@ -211,7 +232,7 @@ void check_replay_outputs(RunOptions& options, const std::string& scene_name) {
   if (options.out_dir.empty()) options.out_dir = "out/" + safe_folder_name(scene_name) + "-replay";
   check_writable_folder("--out", options.out_dir);
   if (!options.frames_dir.empty()) check_writable_folder("--frames", options.frames_dir);
-  if (!options.movie_path.empty()) check_writable_file("--movie", options.movie_path);
+  if (!options.movie_path.empty()) check_movie_path(options.movie_path);
   if (!options.screenshot_path.empty()) check_writable_file("--screenshot", options.screenshot_path);
 }
 

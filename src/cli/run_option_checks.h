@@ -20,6 +20,11 @@ std::string safe_folder_name(const std::string& name);
 // Colour maps the renderer can load (assets/colormaps/*.png), sorted.
 std::vector<std::string> colormap_names();
 
+// The simulated time between frames: --frame-every when given, else the default: the largest
+// whole number of steps not above end_time / 100, at least one step (end_time / 100 for the
+// adaptive dopri54). The default is never refused.
+double frame_interval(const RunOptions& options, const SolverDef& solver);
+
 // Checks the options of `run`, loads and checks the scene with them, fills options.out_dir
 // with out/<safe scene name> when it is empty and checks every output path. Throws InputError.
 SceneDef load_run_scene(RunOptions& options);

@@ -48,7 +48,7 @@ struct Recorder::Impl {
 
   RecorderOptions options;
   std::unique_ptr<PngSequenceWriter> pngs;
-  std::unique_ptr<Mp4Writer> movie;
+  std::unique_ptr<MovieWriter> movie;
   std::thread draw_thread, file_thread, movie_thread;
   Clock::time_point start = Clock::now();
 
@@ -290,7 +290,7 @@ Recorder::Recorder(RecorderOptions options) : impl_(std::make_unique<Impl>()) {
     if (m.error) std::rethrow_exception(m.error);
     if (!m.options.frames_dir.empty()) m.pngs = std::make_unique<PngSequenceWriter>(m.options.frames_dir);
     if (!m.options.movie_path.empty())
-      m.movie = std::make_unique<Mp4Writer>(m.options.movie_path, m.options.width, m.options.height, m.options.fps,
+      m.movie = std::make_unique<MovieWriter>(m.options.movie_path, m.options.width, m.options.height, m.options.fps,
                                             m.options.ffmpeg);
   } catch (...) {
     m.stop_threads();

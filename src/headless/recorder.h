@@ -1,5 +1,5 @@
-// Off-screen recording: snapshots in, a numbered PNG sequence and/or an MP4 movie out, plus
-// single screenshots.
+// Off-screen recording: snapshots in, a numbered PNG sequence and/or a movie (MP4, WebM,
+// Matroska, GIF or AVI: io/movie_format.h) out, plus single screenshots.
 //
 //   submit() --[snapshot slots]--> draw thread --[frame slots]--> file thread:  PNG sequence, screenshots
 //   (copies)                       EGL context:                \-> movie thread: raw RGBA to ffmpeg
@@ -25,7 +25,7 @@ struct RecorderOptions {
   int samples = 1;                 // multisamples per pixel (1: off); render/view.h default_samples()
                                    // is the usual choice; clamped to what the GL driver offers
   std::string frames_dir;          // PNG sequence DIR/frame_000000.png, ... when not empty
-  std::string movie_path;          // H.264 MP4 through ffmpeg when not empty
+  std::string movie_path;          // a movie through ffmpeg when not empty, its format by its extension
   double fps = 30.0;               // the movie's playback rate
   std::string screenshot_path;     // where a frame submitted as a screenshot goes
   RenderSettings settings;         // field, colour map, what is shown
@@ -63,7 +63,7 @@ class Recorder {
  public:
   // Starts the threads: the EGL context, the frames folder and ffmpeg are set up before this
   // returns, so set-up failures are thrown here (std::runtime_error; periflex::InputError when
-  // ffmpeg is missing).
+  // ffmpeg is missing or cannot write the movie's format).
   explicit Recorder(RecorderOptions options);
   // Finishes the frames still queued; errors are swallowed (call finish() to see them).
   ~Recorder();

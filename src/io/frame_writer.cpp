@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "io/child_process.h"
+#include "io/movie_format.h"
 #include "io/mp4_fragments.h"
 
 namespace periflex {
@@ -52,12 +53,32 @@ void PngSequenceWriter::write(const RgbaImage& frame) {
 
 std::string find_ffmpeg() { return find_program("ffmpeg"); }
 
-void check_movie_output(const std::string& movie_path, const std::string& option) {
+void check_movie_output(const std::string& movie_path, const std::string& option, const std::string& ffmpeg) {
+  // a flag is named as on the command line ("--movie"), a window's field by its name
   SourceLocation where;
   where.key = option;
-  if (find_ffmpeg().empty())
+  if (option.rfind("--", 0) == 0) where.file = "command line";
+  const std::string exe = ffmpeg.empty() ? find_ffmpeg() : ffmpeg;
+  if (exe.empty())
     throw InputError(where, "writing " + movie_path + " needs ffmpeg, which is not on PATH; install it "
                      "(apt-get install ffmpeg) or write PNG frames instead");
+  // the format by its extension, and whether this ffmpeg has its encoder and container
+  const FfmpegAbilities& abilities = ffmpeg_abilities(exe);
+  const MovieFormat* format = movie_format_of(movie_path);
+  if (!format) {
+    std::string known;
+    for (const MovieFormat& f : movie_formats()) known += (known.empty() ? "" : ", ") + f.extension;
+    throw InputError(where, "'" + movie_path + "' does not end in a movie extension periflex writes (" + known +
+                                "); this ffmpeg (" + exe + ") can write " + writable_extensions(abilities));
+  }
+  if (!abilities.can_write(*format)) {
+    const std::string missing = !abilities.encoders.count(format->encoder)
+                                    ? "the encoder " + format->encoder
+                                    : "the container " + format->muxer;
+    throw InputError(where, "a " + format->extension + " movie (" + format->description + ") needs " + missing +
+                                ", which this ffmpeg (" + exe + ") does not have; it can write " +
+                                writable_extensions(abilities));
+  }
   fs::path parent = fs::path(movie_path).parent_path();
   if (parent.empty()) parent = ".";
   std::error_code ec;
@@ -68,18 +89,33 @@ void check_movie_output(const std::string& movie_path, const std::string& option
 }
 
 // ---------------------------------------------------------------------------
-// MP4 through ffmpeg
+// Movies through ffmpeg
 
-Mp4Writer::Mp4Writer(std::string path, int width, int height, double fps, const std::string& ffmpeg)
+namespace {
+
+// A hidden name beside the movie, unique to this process: .NAME.PID.part
+std::string temporary_path(const std::string& path) {
+  const fs::path p(path);
+  // appended piece by piece: GCC 12 warns (-Wrestrict) about "." + std::string here
+  std::string name(1, '.');
+  name += p.filename().string();
+  name += '.';
+  name += std::to_string(::getpid());
+  name += ".part";
+  return (p.parent_path() / name).string();
+}
+
+}  // namespace
+
+MovieWriter::MovieWriter(std::string path, int width, int height, double fps, const std::string& ffmpeg)
     : path_(std::move(path)), width_(width), height_(height) {
-  const std::string exe = ffmpeg.empty() ? find_ffmpeg() : ffmpeg;
-  if (exe.empty()) {
-    SourceLocation where;
-    where.key = "movie";
-    throw InputError(where, "writing " + path_ + " needs ffmpeg, which is not on PATH");
-  }
+  ffmpeg_ = ffmpeg.empty() ? find_ffmpeg() : ffmpeg;
+  check_movie_output(path_, "movie", ffmpeg_);
   if (width <= 0 || height <= 0 || !(fps > 0.0))
     throw std::runtime_error("movie " + path_ + ": invalid size or frame rate");
+  const MovieFormat& format = *movie_format_of(path_);
+  fragmented_ = format.fragmented;
+  writing_path_ = fragmented_ ? path_ : temporary_path(path_);
 
   // ffmpeg's messages go to a log file so that a failure can be explained
   char log_template[] = "/tmp/periflex-ffmpeg-XXXXXX";
@@ -95,16 +131,14 @@ Mp4Writer::Mp4Writer(std::string path, int width, int height, double fps, const 
     throw std::runtime_error(std::string("cannot create ffmpeg input socket: ") + std::strerror(errno));
   }
 
-  char size[64], rate[32], gop[32];
+  char size[64], rate[32];
   std::snprintf(size, sizeof size, "%dx%d", width, height);
   std::snprintf(rate, sizeof rate, "%.6g", fps);
-  std::snprintf(gop, sizeof gop, "%d", std::max(1, static_cast<int>(fps + 0.5)));
-  std::vector<std::string> args = {
-      exe, "-hide_banner", "-loglevel", "error", "-y",
-      "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size, "-r", rate, "-i", "-",
-      "-an", "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
-      "-c:v", "libx264", "-preset", "veryfast", "-g", gop, "-pix_fmt", "yuv420p",
-      "-movflags", "frag_keyframe+empty_moov+default_base_moof", path_};
+  std::vector<std::string> args = {ffmpeg_, "-hide_banner", "-loglevel", "error", "-y",
+                                   "-f", "rawvideo", "-pix_fmt", "rgba", "-s", size, "-r", rate, "-i", "-"};
+  const std::vector<std::string> output = movie_output_args(format, fps);
+  args.insert(args.end(), output.begin(), output.end());
+  args.push_back(writing_path_);
   // input "-" also tells ffmpeg not to read keyboard commands from it; a process group of its
   // own (start_child): Ctrl-C at the terminal stops periflex, which then closes the movie
   // cleanly, instead of reaching ffmpeg too and cutting the movie short
@@ -114,12 +148,13 @@ Mp4Writer::Mp4Writer(std::string path, int width, int height, double fps, const 
   ::close(log_fd);
   if (pid_ < 0) {
     ::close(sv[0]);
+    std::remove(log_path_.c_str());
     throw std::runtime_error(error);
   }
   fd_ = sv[0];
 }
 
-Mp4Writer::~Mp4Writer() {
+MovieWriter::~MovieWriter() {
   try {
     close();
   } catch (...) {
@@ -127,7 +162,7 @@ Mp4Writer::~Mp4Writer() {
   }
 }
 
-std::string Mp4Writer::fail_message(const std::string& what) const {
+std::string MovieWriter::fail_message(const std::string& what) const {
   // the last few lines of ffmpeg's log say why it stopped
   std::ifstream log(log_path_);
   std::string line, tail;
@@ -137,7 +172,7 @@ std::string Mp4Writer::fail_message(const std::string& what) const {
   return "movie " + path_ + ": " + what + (tail.empty() ? "" : "; ffmpeg says:" + tail);
 }
 
-void Mp4Writer::write(const RgbaImage& frame) {
+void MovieWriter::write(const RgbaImage& frame) {
   if (fd_ < 0) throw std::runtime_error("movie " + path_ + ": write after close");
   if (frame.width != width_ || frame.height != height_)
     throw std::runtime_error("movie " + path_ + ": frame is " + std::to_string(frame.width) + "x" +
@@ -159,7 +194,7 @@ void Mp4Writer::write(const RgbaImage& frame) {
   ++count_;
 }
 
-void Mp4Writer::close() {
+void MovieWriter::close() {
   if (pid_ < 0) return;
   // end of input tells ffmpeg to finish the file
   if (fd_ >= 0) {
@@ -173,23 +208,49 @@ void Mp4Writer::close() {
   } while (r < 0 && errno == EINTR);
   pid_ = -1;
   const bool ok = r > 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-  if (!ok) {
-    const std::string why = WIFSIGNALED(status) ? "ffmpeg was killed by signal " + std::to_string(WTERMSIG(status))
-                                                : "ffmpeg exited with status " + std::to_string(WEXITSTATUS(status));
-    const std::string message = fail_message(why);
-    std::remove(log_path_.c_str());
-    throw std::runtime_error(message);
-  }
+  std::string failure;
+  if (!ok)
+    failure = fail_message(WIFSIGNALED(status) ? "ffmpeg was killed by signal " + std::to_string(WTERMSIG(status))
+                                               : "ffmpeg exited with status " + std::to_string(WEXITSTATUS(status)));
   std::remove(log_path_.c_str());
+  if (!failure.empty()) {
+    // what the file holds decides what is kept: a fragmented MP4's whole fragments play
+    if (fragmented_) {
+      count_ = read_mp4_fragments(path_).samples;
+      if (count_ == 0) std::remove(path_.c_str());
+    } else {
+      count_ = 0;
+      std::remove(writing_path_.c_str());
+    }
+    throw std::runtime_error(failure);
+  }
+  keep_or_remove();
+}
+
+void MovieWriter::keep_or_remove() {
   // ffmpeg exits with success even when the disk refused part of the file: read it back
-  const Mp4Fragments movie = read_mp4_fragments(path_);
-  if (!movie.whole || movie.samples != count_) {
-    const long sent = count_;
+  const long sent = count_;
+  if (fragmented_) {
+    const Mp4Fragments movie = read_mp4_fragments(path_);
+    if (movie.whole && movie.samples == sent) return;
     count_ = movie.samples;
+    if (count_ == 0) std::remove(path_.c_str());
     throw std::runtime_error("movie " + path_ + ": the file holds " + std::to_string(movie.samples) + " of the " +
                              std::to_string(sent) + " frames sent to ffmpeg" +
-                             (movie.whole ? "" : ", its last part cut short") + " (disk full?)");
+                             (movie.whole ? "" : ", its last part cut short") + " (disk full?)" +
+                             (count_ == 0 ? "; it was removed" : ""));
   }
+  const long held = movie_file_frames(ffmpeg_, writing_path_);
+  std::error_code ec;
+  if (held == sent) fs::rename(writing_path_, path_, ec);
+  if (held == sent && !ec) return;
+  count_ = 0;
+  std::remove(writing_path_.c_str());
+  if (held != sent)
+    throw std::runtime_error("movie " + path_ + ": the file ffmpeg wrote holds " +
+                             (held < 0 ? std::string("no readable frames") : std::to_string(held) + " frames") +
+                             " of the " + std::to_string(sent) + " sent (disk full?); nothing was kept");
+  throw std::runtime_error("movie " + path_ + ": cannot rename " + writing_path_ + " to it: " + ec.message());
 }
 
 }  // namespace periflex

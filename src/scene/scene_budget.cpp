@@ -8,6 +8,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/sim_time.h"
 #include "scene/grid_scan.h"
 #include "scene/integrator_catalogue.h"
 #include "scene/toml_reader.h"
@@ -95,6 +96,12 @@ BodyCount count_particles_and_neighbours(const FlexBodyDef& flex, const GridFram
   return count;
 }
 
+// Instants k * interval in [0, end_time], k = 0, 1, ...: the rows or frames a schedule lands on
+// (cli/run_command.cpp), counted with the tolerance the run's clock uses (core/sim_time.h).
+double schedule_instants(double end_time, double interval, double dt) {
+  return std::floor((end_time + time_tolerance(dt, end_time)) / interval) + 1.0;
+}
+
 // The scene's time-stepping figures: dt against end_time, steps, rows, frames.
 void check_time(const SceneDef& scene, const RunPlan& plan, SceneBudget& budget) {
   const SolverDef& s = scene.solver;
@@ -107,40 +114,55 @@ void check_time(const SceneDef& scene, const RunPlan& plan, SceneBudget& budget)
            "dt = " + format_number(s.dt) + " exceeds end_time = " + format_number(s.end_time) +
                "; the run would not take a single step");
 
-  // fixed steps: end_time / dt of them
-  budget.steps = s.end_time / s.dt;
+  // fixed steps: at least end_time / dt whole ones (more where a step is cut short to land on
+  // an output time)
+  budget.steps = std::ceil(s.end_time / s.dt - 1e-9);
   // blame the value the command line gave, if one did
   const bool until_flag = scene.locate("solver.end_time").file == "command line" &&
                           scene.locate("solver.dt").file != "command line";
+  const SourceLocation steps_key = scene.locate(until_flag ? "solver.end_time" : "solver.dt");
   if (!adaptive && !(budget.steps <= l.max_steps))
-    refuse(scene.locate(until_flag ? "solver.end_time" : "solver.dt"), "the run would take " + figure(budget.steps) + " steps (end_time " +
-                                          format_number(s.end_time) + " s / dt " + format_number(s.dt) +
-                                          " s), more than limits.max_steps = " + figure(l.max_steps) +
-                                          "; raise dt, lower end_time, or raise limits.max_steps");
+    refuse(steps_key, "the run would take " + format_count(budget.steps) + " steps (end_time " +
+                          format_number(s.end_time) + " s / dt " + format_number(s.dt) +
+                          " s), more than limits.max_steps = " + format_count(l.max_steps) +
+                          "; raise dt, lower end_time, or raise limits.max_steps");
 
-  // rows of series.csv: one per output interval. An interval shorter than dt writes a row every
-  // step, but the output schedule still counts its intervals, so they are what is bounded.
-  if (s.output_interval > 0.0) {
-    budget.rows = s.end_time / s.output_interval + 2;
+  // rows of series.csv: one at each output time, plus the last state when the end is not one.
+  // Without an interval, a row every tenth step.
+  const double interval = s.output_interval > 0.0 ? s.output_interval : 10.0 * s.dt;
+  const bool rows_given = s.output_interval > 0.0;
+  if (adaptive && !rows_given) {
+    budget.rows = 0.0;
   } else {
-    budget.rows = adaptive ? 0.0 : budget.steps / 10 + 2;
+    budget.rows = schedule_instants(s.end_time, interval, s.dt);
+    if (!time_reached((budget.rows - 1) * interval, s.end_time, s.dt)) budget.rows += 1;
   }
+  // an interval shorter than a fixed step writes a row after every step, but the schedule still
+  // counts its output times, so they are what is bounded (a tiny interval is refused, not run)
+  const bool every_step = !adaptive && interval < s.dt * (1 - 1e-9);
   if (!(budget.rows <= l.max_output_rows))
-    refuse(scene.locate(s.output_interval > 0.0 ? "solver.output_interval" : "solver.dt"),
-           "series.csv would get " + figure(budget.rows) + " rows, more than limits.max_output_rows = " +
-               figure(l.max_output_rows) + "; raise solver.output_interval or limits.max_output_rows");
+    refuse(rows_given ? scene.locate("solver.output_interval") : steps_key,
+           (every_step ? "an output interval of " + format_number(interval) + " s (shorter than dt = " +
+                             format_number(s.dt) + " s) counts " + format_count(budget.rows) + " output times"
+                       : "series.csv would get " + format_count(budget.rows) + " rows") +
+               ", more than limits.max_output_rows = " + format_count(l.max_output_rows) +
+               "; raise solver.output_interval or limits.max_output_rows");
 
-  // rendered frames
+  // rendered frames: only an interval the user gave can be shorter than a step (the default is
+  // a whole number of steps)
   if (plan.frame_every > 0.0) {
-    if (!adaptive && plan.frame_every < s.dt * (1 - 1e-9))
+    if (!adaptive && plan.frame_every_given && plan.frame_every < s.dt * (1 - 1e-9))
       refuse(plan.frame_every_where, "a frame every " + format_number(plan.frame_every) +
                                          " s is shorter than a step (dt = " + format_number(s.dt) +
                                          " s); give at least dt");
-    budget.frames = s.end_time / plan.frame_every + 1;
+    budget.frames = schedule_instants(s.end_time, plan.frame_every, s.dt);
     if (!(budget.frames <= l.max_frames))
-      refuse(plan.frame_every_where, "the run would render " + figure(budget.frames) +
-                                         " frames, more than limits.max_frames = " + figure(l.max_frames) +
-                                         "; give a longer interval or raise limits.max_frames");
+      refuse(plan.frame_every_where,
+             "the run would render " + format_count(budget.frames) + " frames (one every " +
+                 format_number(plan.frame_every) + " s" + (plan.frame_every_given ? "" : ", the default") +
+                 "), more than limits.max_frames = " + format_count(l.max_frames) +
+                 (plan.frame_every_given ? "; give a longer interval or raise limits.max_frames"
+                                         : "; give --frame-every or raise limits.max_frames"));
   }
 }
 
@@ -153,15 +175,15 @@ void check_particles(const SceneDef& scene, SceneBudget& budget) {
     const Vec2 extent = grid_extent_cells(flex.shape, flex.grid_spacing);
     if (!(extent.maxCoeff() <= 2e9))
       refuse(flex_key(scene, flex, "grid_spacing"), "the grid of flexible body '" + flex.name + "' would span " +
-                                                 figure(extent.maxCoeff()) +
-                                                 " cells across, more than 2e9; raise grid_spacing");
+                                                 format_count(std::ceil(extent.maxCoeff())) +
+                                                 " cells across, more than 2000000000; raise grid_spacing");
     const GridFrame frame = grid_frame(flex.shape, flex.grid_spacing);
     const double work = grid_scan_work(flex.shape, flex.holes, frame);
     if (!(work <= l.max_grid_rows))
       refuse(flex_key(scene, flex, "grid_spacing"), "placing the particles of flexible body '" + flex.name +
-                                                 "' would scan " + figure(work) +
+                                                 "' would scan " + format_count(work) +
                                                  " grid rows (rows x shapes, plus the rows polygon edges span), "
-                                                 "more than limits.max_grid_rows = " + figure(l.max_grid_rows) +
+                                                 "more than limits.max_grid_rows = " + format_count(l.max_grid_rows) +
                                                  "; raise grid_spacing or simplify the shape");
     // the exact count, by the scan that fills the grid
     const BodyCount count = count_particles_and_neighbours(flex, frame);
@@ -175,9 +197,10 @@ void check_particles(const SceneDef& scene, SceneBudget& budget) {
     budget.memory += body_memory.back();
     if (!(budget.particles <= l.max_particles))
       refuse(flex_key(scene, flex, "grid_spacing"),
-             "flexible body '" + flex.name + "' has " + figure(particles) + " particles" +
-                 (scene.flex_bodies.size() > 1 ? ", bringing the scene to " + figure(budget.particles) : std::string()) +
-                 ", more than limits.max_particles = " + figure(l.max_particles) +
+             "flexible body '" + flex.name + "' has " + format_count(particles) + " particles" +
+                 (scene.flex_bodies.size() > 1 ? ", bringing the scene to " + format_count(budget.particles)
+                                               : std::string()) +
+                 ", more than limits.max_particles = " + format_count(l.max_particles) +
                  " for the whole scene; raise grid_spacing or limits.max_particles");
   }
   if (!scene.flex_bodies.empty()) budget.memory += kProgramBytes;
@@ -191,8 +214,8 @@ void check_particles(const SceneDef& scene, SceneBudget& budget) {
         if (body_memory[k] > body_memory[largest - scene.flex_bodies.data()]) largest = &scene.flex_bodies[k];
       where = size_key(scene, *largest);
     }
-    refuse(where, "the flexible bodies need about " + figure(budget.memory / 1e9) + " GB (" + figure(budget.particles) +
-                      " particles, " + figure(budget.bonds) + " bonds), more than the memory limit of " +
+    refuse(where, "the flexible bodies need about " + figure(budget.memory / 1e9) + " GB (" + format_count(budget.particles) +
+                      " particles, " + format_count(budget.bonds) + " bonds), more than the memory limit of " +
                       figure(cap / 1e9) + " GB; raise grid_spacing, lower horizon_ratio, or set limits.max_memory (bytes)");
   }
 }

@@ -20,6 +20,7 @@ namespace periflex {
 // What a command adds to the scene's own cost.
 struct RunPlan {
   double frame_every = 0.0;       // simulated seconds between rendered frames; 0: no frames
+  bool frame_every_given = false; // typed by the user (only then may it be shorter than dt)
   SourceLocation frame_every_where;
   int threads = 0;                // --threads; 0: not given
   SourceLocation threads_where;
@@ -30,9 +31,9 @@ struct SceneBudget {
   double particles = 0.0;   // all flexible bodies, exact
   double bonds = 0.0;       // an upper bound: particles x neighbours within the reach / 2
   double memory = 0.0;      // bytes at the run's peak (program, particles, bonds, integrator)
-  double steps = 0.0;       // end_time / dt (fixed-step integrators)
-  double rows = 0.0;        // series.csv rows
-  double frames = 0.0;      // rendered frames
+  double steps = 0.0;       // whole steps of dt to end_time (fixed-step integrators), at least
+  double rows = 0.0;        // series.csv rows, exact
+  double frames = 0.0;      // rendered frames, exact
 };
 
 // Peak memory of a run, fitted to the peak resident memory `/usr/bin/time` measures (2 cores,

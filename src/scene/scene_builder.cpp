@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include "scene/contact_reader.h"
 #include "scene/function_reader.h"
@@ -25,14 +24,6 @@ const std::set<std::string> kDriverKeys = {"name", "type", "body_i", "body_j", "
 const std::set<std::string> kForceKeys = {"name", "type", "body_i", "body_j", "point_i", "point_j", "stiffness",
                                           "damping", "free_length", "free_angle", "actuator", "direction", "magnitude"};
 const std::set<std::string> kLoadKeys = {"name", "type", "region", "fx", "fy"};
-
-// Counts of the order of 1e9 read better in scientific form ("4e+09").
-std::string format_estimate(double value) {
-  std::ostringstream out;
-  out.precision(3);
-  out << value;
-  return out.str();
-}
 
 std::string join(const std::vector<std::string>& words) {
   std::string out;
@@ -489,8 +480,8 @@ class SceneBuilder {
     const double particles = shape_area(flex.shape) / (flex.grid_spacing * flex.grid_spacing);
     if (!(particles <= limit)) {
       const double smallest = std::sqrt(shape_area(flex.shape) / limit);
-      in.fail("grid_spacing", "flexible body '" + flex.name + "' would have about " + format_estimate(particles) +
-              " particles (area / grid_spacing^2), more than the limit of " + format_estimate(limit) +
+      in.fail("grid_spacing", "flexible body '" + flex.name + "' would have about " + format_count(std::round(particles)) +
+              " particles (area / grid_spacing^2), more than the limit of " + format_count(limit) +
               " (limits.max_particles); use grid_spacing >= " + format_number(smallest));
     }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 namespace periflex {
@@ -63,6 +64,15 @@ std::string format_number(double value) {
   out.precision(10);
   out << value;
   return out.str();
+}
+
+std::string format_count(double value) {
+  // doubles hold every whole number exactly up to 2^53; beyond it the digits are still the
+  // value's own
+  if (!std::isfinite(value) || value != std::floor(value) || std::abs(value) >= 1e30) return format_number(value);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.0f", value);
+  return text;
 }
 
 // ---------------------------------------------------------------------------

@@ -50,6 +50,10 @@ toml::table parse_toml_located(std::string_view text, const std::string& display
 std::string describe_type(const toml::node& node);
 // Shortest faithful text of a number for messages.
 std::string format_number(double value);
+// A count for messages, every digit of it ("1000001", never "1e+06"): a limit or a number of
+// rows, frames, steps or particles compared with one reads exactly. A value that is not a whole
+// number (a limit given as 2.5) is written as format_number writes it.
+std::string format_count(double value);
 
 // ---------------------------------------------------------------------------
 // Sign rule for a number.

@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "scene/scene_loader.h"
+#include "scene/toml_reader.h"
 #include "solve/simulation.h"
 #include "solve/snapshot.h"
 #include "study/reference_csv.h"
@@ -306,9 +307,9 @@ bool divides(double interval, double dt) {
 void check_step_count(const SceneDef& scene, double dt, const SourceLocation& where) {
   const double steps = scene.solver.end_time / dt;
   if (!(steps <= scene.limits.max_steps))
-    throw InputError(where, "dt " + format_g(dt) + " takes " + format_g(steps) + " steps to the end time " +
-                                format_g(scene.solver.end_time) + " s, more than limits.max_steps = " +
-                                format_g(scene.limits.max_steps) +
+    throw InputError(where, "dt " + format_g(dt) + " takes " + format_count(std::ceil(steps - 1e-9)) +
+                                " steps to the end time " + format_g(scene.solver.end_time) +
+                                " s, more than limits.max_steps = " + format_count(scene.limits.max_steps) +
                                 " (raise dt, lower end_time, or raise the scene's limits.max_steps)");
 }
 

@@ -8,7 +8,7 @@
 #
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
-# CASE: record_png | record_plot | record_mp4 | record_interrupted | keys | damping | refusal | spring | deform | teach | inspect | plot |
+# CASE: record_png | record_plot | record_mp4 | record_gif | record_interrupted | keys | damping | refusal | spring | deform | teach | inspect | plot |
 #       plot_series | knife | body | contacts | history
 set -uo pipefail
 
@@ -205,6 +205,16 @@ case "$case_name" in
     ((frames == recorded)) || fail "the movie has $frames frames, the window recorded $recorded"
     size=$(ffprobe -v error -select_streams v:0 -show_entries stream=width,height -of csv=p=0:s=x "$work/movie.mp4")
     [[ "$size" == 1024x768 ]] || fail "movie frames of $size, the window is 1024x768"
+    ;;
+  record_gif)
+    # a GIF for slides, its format by the name typed: every frame recorded in it, and the
+    # temporary file it was written under renamed, not left beside it
+    record "$work/movie.gif"
+    frames=$(movie_frames "$work/movie.gif")
+    ((frames == recorded)) || fail "the GIF has $frames frames, the window recorded $recorded"
+    [[ "$(ffprobe -v error -select_streams v:0 -show_entries stream=codec_name -of csv=p=0 "$work/movie.gif")" == gif ]] ||
+      fail "movie.gif is not a GIF"
+    ! ls -A "$work" | grep -q '\.part$' || fail "a temporary .part file was left beside the GIF"
     ;;
   record_interrupted)
     # Ctrl-C in the terminal that started the window, while it records: the window closes, the

@@ -1,6 +1,6 @@
 // Reading back what a fragmented MP4 holds: samples of the fragments whose moof and mdat are both
 // whole, and whether the boxes end with the file. Files built box by box here, and a movie that
-// ffmpeg wrote through Mp4Writer (every frame in it; cut short, only the whole fragments).
+// ffmpeg wrote through MovieWriter (every frame in it; cut short, only the whole fragments).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -63,8 +63,8 @@ TEST(Mp4Fragments, ReadsSixtyFourBitSizesAndRefusesNonsense) {
   EXPECT_FALSE(read_mp4_fragments(::testing::TempDir() + "mp4_missing.mp4").whole);
 }
 
-// Mp4Writer's own movie holds every frame sent, and a copy cut short holds fewer, whole.
-TEST(Mp4Fragments, MovieOfMp4WriterHoldsEveryFrame) {
+// MovieWriter's own movie holds every frame sent, and a copy cut short holds fewer, whole.
+TEST(Mp4Fragments, MovieOfMovieWriterHoldsEveryFrame) {
   if (find_ffmpeg().empty()) GTEST_SKIP() << "ffmpeg is not installed";
   const std::string path = ::testing::TempDir() + "mp4_writer_movie.mp4";
   RgbaImage frame;
@@ -72,7 +72,7 @@ TEST(Mp4Fragments, MovieOfMp4WriterHoldsEveryFrame) {
   frame.height = 48;
   frame.pixels.assign(static_cast<size_t>(frame.width) * frame.height * 4, 0);
   {
-    Mp4Writer movie(path, frame.width, frame.height, 10.0);
+    MovieWriter movie(path, frame.width, frame.height, 10.0);
     // noise, so that every frame takes room and the fragments are of like sizes
     uint32_t state = 12345;
     for (int k = 0; k < 35; ++k) {

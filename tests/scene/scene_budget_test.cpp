@@ -10,8 +10,11 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <regex>
 #include <string>
 #include <vector>
+
+#include "../cli/run_program.h"
 
 #include "scene/scene_budget.h"
 #include "scene/scene_loader.h"
@@ -99,6 +102,47 @@ TEST(SceneBudget, BondCountIsExactOnASliverAndAPlate) {
     EXPECT_EQ(budget.particles, static_cast<double>(sim.info().particles)) << scene;
     EXPECT_EQ(budget.bonds, static_cast<double>(sim.info().bonds)) << scene;
   }
+}
+
+// The count in "series.csv would get N rows, more than limits.max_output_rows = M", or -1.
+long refused_rows(const std::string& output) {
+  std::smatch m;
+  static const std::regex pattern("series\\.csv would get ([0-9]+) rows, more than limits\\.max_output_rows = ([0-9]+);");
+  return std::regex_search(output, m, pattern) ? std::stol(m[1]) : -1;
+}
+
+// The report's case: the pendulum to 10000 s, a row every 0.01 s, writes rows at 0, 0.01, ...,
+// 10000: 1000001 of them, one more than the default limit, and the message says exactly that.
+TEST(SceneBudget, RowRefusalPrintsExactWholeCounts) {
+  const auto out = testing::fresh_directory("budget_rows_million");
+  const auto r = testing::run_periflex("run " + testing::scene("pendulum.toml") + " --until 10000 --quiet --out " +
+                                       out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("series.csv would get 1000001 rows, more than limits.max_output_rows = 1000000"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("e+0"), std::string::npos) << r.output;
+}
+
+// The count a refusal prints is the count the run writes: the limit set to it, the run goes
+// through and its series.csv holds that many rows; one less, and it is refused. dt = 3 ms does
+// not divide the output interval (7 ms) nor the end (0.1 s): rows at 0, 7, ..., 98 ms and the end.
+TEST(SceneBudget, RowCountOfTheRefusalIsTheCountTheRunWrites) {
+  const auto out = testing::fresh_directory("budget_rows_exact");
+  const std::string run = "run " + testing::scene("pendulum.toml") +
+                          " --until 0.1 --dt 3e-3 --set solver.output_interval=7e-3 --quiet --out " + out.string();
+  const auto small = testing::run_periflex(run + " --set limits.max_output_rows=5");
+  ASSERT_EQ(small.exit_code, 2) << small.output;
+  const long count = refused_rows(small.output);
+  ASSERT_GT(count, 5) << small.output;
+  EXPECT_EQ(count, static_cast<long>(std::floor(0.1 / 7e-3)) + 2);
+  const auto fits = testing::run_periflex(run + " --set limits.max_output_rows=" + std::to_string(count));
+  ASSERT_EQ(fits.exit_code, 0) << fits.output;
+  const std::string series = testing::read_text(out / "series.csv");
+  EXPECT_EQ(static_cast<long>(std::count(series.begin(), series.end(), '\n')) - 1, count);
+  const auto short_by_one = testing::run_periflex(run + " --set limits.max_output_rows=" + std::to_string(count - 1));
+  EXPECT_EQ(short_by_one.exit_code, 2) << short_by_one.output;
+  EXPECT_EQ(refused_rows(short_by_one.output), count) << short_by_one.output;
 }
 
 }  // namespace

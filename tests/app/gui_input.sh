@@ -296,6 +296,8 @@ case "$case_name" in
     click unstable_cancel
     wait_until 10 "the offer closed" '[[ -z "$(centre unstable_cancel)" ]]'
     holds "$(state dt) == $dt0" || fail "dt changed to $(state dt) after the offer was declined"
+    # (the panel takes clicks again once the dialog's fade is over)
+    sleep 0.5
     dt_bottom=$(awk '$1 == "widget" && $2 == "dt" { print $6 }' "$widgets")
     refusal_top=$(awk '$1 == "widget" && $2 == "dt_refusal" { print $4 }' "$widgets")
     ((refusal_top >= dt_bottom && refusal_top < dt_bottom + 30)) ||

@@ -113,6 +113,36 @@ TEST(MouseGrip, AnchorWalksAtTheCappedSpeedWhateverTheStep) {
   }
 }
 
+// Shift pressed during a drag (the same grab again, hard): the anchor's speed and the pull's
+// limit ten times higher from then on; let go, back to the gentle grip. The anchor keeps its
+// place when the grip changes (no jump).
+TEST(MouseGrip, HardGripDuringADragIsTenTimesFasterAndStronger) {
+  Simulation sim(plate(0.6, false));
+  sim.initialize();
+  Snapshot snap;
+  sim.fill_snapshot(snap);
+  MouseSpring grab;
+  grab.particle = nearest(snap, Vec2::Zero());
+  grab.target = Vec2(0.004, 0.0);
+  sim.set_mouse_spring(grab);
+  sim.fill_snapshot(snap);
+  const double speed = snap.mouse.max_speed, force = snap.mouse.max_force;
+  for (int k = 0; k < 50; ++k) sim.step();
+  sim.fill_snapshot(snap);
+  const Vec2 before = snap.mouse.anchor;
+  grab.hard = true;
+  sim.set_mouse_spring(grab);
+  sim.fill_snapshot(snap);
+  EXPECT_DOUBLE_EQ(snap.mouse.max_speed, kHardGripFactor * speed);
+  EXPECT_DOUBLE_EQ(snap.mouse.max_force, kHardGripFactor * force);
+  EXPECT_LT((snap.mouse.anchor - before).norm(), 1e-15);
+  grab.hard = false;
+  sim.set_mouse_spring(grab);
+  sim.fill_snapshot(snap);
+  EXPECT_DOUBLE_EQ(snap.mouse.max_speed, speed);
+  EXPECT_DOUBLE_EQ(snap.mouse.max_force, force);
+}
+
 // A plate clamped on its left edge, its right edge pulled 5 mm to the right: the anchor waits at
 // the pull's limit (it stops short of the pointer), and the pull never exceeds the limit by more
 // than one step of the anchor's walk (stiffness * v * dt).

@@ -153,14 +153,15 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
 
   # real input: recording from the Export panel (PNG folder, MP4, GIF, MP4 ended by Ctrl-C in the
   # terminal), the keys, a live setting
-  # typed into its field, the mouse spring on the notched plate, the deformation slider and key,
+  # typed into its field, a dt past the stable limit refused and then run once confirmed, the mouse
+  # spring on the notched plate, a slow pull across its notch, the deformation slider and key,
   # the teaching aids (F1 list, description, pace, reload of a scene file saved on disk), the
   # inspector of the particle under the pointer, the plot window (a column picked, zoomed and
   # exported; two series in one plot, exported and compared with series.csv), the knife, the
   # inspector of a rigid body clicked, the drawing of active contacts (key and box), the history
   # (Left, Right, the timeline slider, resume)
-  foreach(case record_png record_plot record_mp4 record_gif record_interrupted keys damping refusal spring deform teach inspect plot
-               plot_series knife body contacts history)
+  foreach(case record_png record_plot record_mp4 record_gif record_interrupted keys damping refusal unstable spring pull
+               deform teach inspect plot plot_series knife body contacts history)
     gui_input_test(${case})
   endforeach()
 

@@ -448,15 +448,17 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
   const double mx = io.MousePos.x * sx, my = io.MousePos.y * sy;
   const Vec2 world = camera_.to_world(mx, my, fb_width, fb_height);
 
-  // a grab lasts until the left button is released, wherever the mouse goes
+  // a grab lasts until the left button is released, wherever the mouse goes; Shift held makes
+  // it a hard one (faster and stronger), taken or let go at any time during the drag
   if (grabbing_ && grab_by_mouse_) {
     SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
       grabbing_ = false;
       send(c);
-    } else if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f) {
+    } else if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f || io.KeyShift != grab_spring_.hard) {
       c.count = 0;
       grab_spring_.target = world;
+      grab_spring_.hard = io.KeyShift;
       c.spring = grab_spring_;
       send(c);
     }
@@ -484,6 +486,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     // clicked closes the inspector
     inspected_body_ = spring && spring->body >= 0 ? spring->body + 1 : spring ? inspected_body_ : -1;
     if (spring) {
+      spring->hard = io.KeyShift;
       grabbing_ = true;
       grab_by_mouse_ = true;
       grab_spring_ = *spring;
@@ -520,37 +523,6 @@ void GuiApp::capture_screenshot(const std::string& path, int fb_width, int fb_he
 // ---------------------------------------------------------------------------------------------
 // the frame loop
 
-void GuiApp::draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height) {
-  // what the mouse holds: a line from the held point to the pointer, the force at the pointer
-  if (!grabbing_ || status_.mouse_stiffness <= 0.0) return;
-  Vec2 held;
-  if (grab_spring_.particle >= 0 && grab_spring_.particle < static_cast<int>(snap.px.size())) {
-    held = Vec2(snap.px[grab_spring_.particle], snap.py[grab_spring_.particle]);
-  } else if (grab_spring_.body >= 0 && grab_spring_.body + 1 < static_cast<int>(snap.bodies.size())) {
-    const Snapshot::Pose& pose = snap.bodies[grab_spring_.body + 1];
-    held = Vec2(pose.x, pose.y) + rotation(pose.angle) * grab_spring_.local_point;
-  } else {
-    return;
-  }
-  const float scale = ImGui::GetIO().DisplayFramebufferScale.x > 0.0f ? ImGui::GetIO().DisplayFramebufferScale.x : 1.0f;
-  const auto window_point = [&](const Vec2& world) {
-    const Vec2 p = camera_.to_pixels(world, fb_width, fb_height);
-    return ImVec2(static_cast<float>(p.x()) / scale, static_cast<float>(p.y()) / scale);
-  };
-  const ImVec2 a = window_point(held), b = window_point(grab_spring_.target);
-  ImDrawList* list = ImGui::GetBackgroundDrawList();
-  const ImU32 colour = IM_COL32(90, 220, 255, 255);
-  list->AddLine(a, b, colour, 2.0f);
-  list->AddCircleFilled(a, 4.0f, colour);
-  list->AddCircle(b, 6.0f, colour, 0, 2.0f);
-  // the spring's pull (its damping part left out): stiffness times stretch
-  const double force = status_.mouse_stiffness * (grab_spring_.target - held).norm();
-  char text[48];
-  std::snprintf(text, sizeof text, "%.3g N", force);
-  list->AddText(ImVec2(b.x + 9.0f, b.y - 18.0f), colour, text);
-  dump_.state("spring_force", force);
-}
-
 void GuiApp::dump_state(int fb_width, int fb_height) {
   // what input-driven tests compare against (see widget_dump.h)
   if (!dump_.enabled()) return;
@@ -559,6 +531,7 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   dump_.state("time", status_.time);
   dump_.state("bond_damping", status_.settings.bond_damping);
   dump_.state("dt", status_.settings.dt);
+  if (status_.numerical_error) dump_.state("numerical_error", status_.numerical_error->quantity);
   dump_.state("history_states", static_cast<double>(status_.history_states));
   dump_.state("history_interval", status_.history_interval);
   dump_.state("scrub", static_cast<double>(status_.scrub));
@@ -614,6 +587,7 @@ void GuiApp::dump_state(int fb_width, int fb_height) {
   if (grabbing_ && grab_spring_.particle >= 0 && grab_spring_.particle < static_cast<int>(snap.px.size())) {
     dump_.state("grabbed", particle(grab_spring_.particle));
   }
+  dump_grip_state(snap);
   // the particle the left button would grab now
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   const Vec2 world = camera_.to_world(mouse.x * sx, mouse.y * sy, fb_width, fb_height);

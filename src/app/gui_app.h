@@ -56,7 +56,10 @@ class GuiApp {
   void send(SimCommand command);
   void script_failure(const std::string& what);
   void dump_state(int fb_width, int fb_height);
+  // the mouse's grip (gui_grip.cpp): the spring to its anchor, the pointer it walks to, the pull
+  // and its limits; and, for input-driven tests, the grip and the damage it did
   void draw_mouse_spring(const Snapshot& snap, int fb_width, int fb_height);
+  void dump_grip_state(const Snapshot& snap);
   // the knife (gui_knife.cpp): a left-drag over the picture draws a segment; its release cuts
   void knife_input(const Vec2& world);
   void draw_knife(int fb_width, int fb_height);
@@ -90,6 +93,8 @@ class GuiApp {
   void panel_export();
   void panel_log();
   void numerical_error_modal();
+  // a dt refused for the explicit stability limit: confirm to run it anyway (gui_panels.cpp)
+  void unstable_step_modal();
 
   // recording (gui_record.cpp)
   void start_recording(const std::string& path, double interval, double fps, int fb_width, int fb_height);
@@ -145,6 +150,14 @@ class GuiApp {
   std::array<float, 4> plot_png_rect_{};  // the canvas in framebuffer pixels (x0, y0, x1, y1)
   long seen_generation_ = -1, seen_scene_generation_ = -1;
   LiveSettings edit_;               // the live-parameter panel's copy
+  // a typed dt sent as command number `sent`: if refused for the stability limit, the window
+  // asks whether to run it anyway (unstable_asked_ holds it while the question is open)
+  struct UnstableOffer {
+    LiveSettings settings;
+    long sent = 0;
+  };
+  std::optional<UnstableOffer> unstable_offer_;
+  LiveSettings unstable_asked_;
   long edit_generation_ = -1;
   int speed_choice_ = 0;
   int step_count_ = 100;            // the Simulation panel's "Step N"

@@ -74,6 +74,7 @@ void GuiApp::draw_panels(int fb_width, int fb_height) {
   ImGui::PopItemWidth();
   ImGui::End();
   numerical_error_modal();
+  unstable_step_modal();
 }
 
 void GuiApp::panel_simulation() {
@@ -187,8 +188,12 @@ void GuiApp::panel_parameters() {
     ImGui::EndCombo();
   }
   if (status_.rejected_key == "integrator") error_text("refused: " + status_.rejected_message);
-  changed |= input_number("dt [s]", edit.dt);
+  const double dt_before = edit.dt;
+  const bool dt_typed = input_number("dt [s]", edit.dt) && edit.dt != dt_before;
+  changed |= dt_typed;
   dump_.note_item("dt");
+  // a new step is held to the stability limit again: one past it runs only once confirmed
+  if (dt_typed) edit.allow_unstable = false;
   // a refused value is shown where it was typed, not only in the log
   const auto refusal = [this](const char* key) {
     if (status_.rejected_key != key) return;
@@ -232,6 +237,8 @@ void GuiApp::panel_parameters() {
     SimCommand c = SimCommand::make(SimCommand::Kind::kApplySettings);
     c.settings = edit;
     send(c);
+    // a refusal of this step for the stability limit is answered with the offer to run it anyway
+    if (dt_typed && critical > 0.0) unstable_offer_ = UnstableOffer{edit, sent_};
   }
   for (const std::string& w : status_.info.warnings) warning_text(w);
 }
@@ -424,6 +431,37 @@ void GuiApp::panel_log() {
   ImGui::EndChild();
 }
 
+void GuiApp::unstable_step_modal() {
+  // once the worker has answered: a step refused for the stability limit is offered to run anyway
+  constexpr const char* kTitle = "Run past the stable step?";
+  if (unstable_offer_ && status_.commands_applied >= unstable_offer_->sent) {
+    if (status_.rejected_key == "dt" && status_.rejected_message.find("critical step") != std::string::npos) {
+      unstable_asked_ = unstable_offer_->settings;
+      ImGui::OpenPopup(kTitle);
+    }
+    unstable_offer_.reset();
+  }
+  if (!ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) return;
+  ImGui::PushTextWrapPos(520.0f);
+  ImGui::TextWrapped("dt = %.6g s is above the stable step of the explicit integrator (critical step %.4g s).",
+                     unstable_asked_.dt, status_.info.critical_time_step);
+  ImGui::TextWrapped("Run it anyway to watch the integration diverge: the energy grows step by step until the "
+                     "divergence check stops the run with a numerical-failure diagnostic.");
+  ImGui::PopTextWrapPos();
+  if (ImGui::Button("Run past the limit")) {
+    SimCommand c = SimCommand::make(SimCommand::Kind::kApplySettings);
+    c.settings = unstable_asked_;
+    c.settings.allow_unstable = true;
+    send(c);
+    ImGui::CloseCurrentPopup();
+  }
+  dump_.note_item("unstable_confirm");
+  ImGui::SameLine();
+  if (ImGui::Button("Keep the stable step")) ImGui::CloseCurrentPopup();
+  dump_.note_item("unstable_cancel");
+  ImGui::EndPopup();
+}
+
 void GuiApp::numerical_error_modal() {
   // open once per failure; the run stays paused until reset, reload or a settings change
   if (status_.numerical_error && status_.numerical_error->step != shown_error_step_) {
@@ -447,6 +485,7 @@ void GuiApp::numerical_error_modal() {
     }
     ImGui::SameLine();
     if (ImGui::Button("Close")) ImGui::CloseCurrentPopup();
+    dump_.note_item("failure_close");
     ImGui::EndPopup();
   }
 }

@@ -11,7 +11,7 @@ struct KeyHelp {
   const char* action;
 };
 
-inline constexpr std::array<KeyHelp, 20> kKeyHelp = {{
+inline constexpr std::array<KeyHelp, 21> kKeyHelp = {{
     {"F1", "show or hide this list"},
     {"Space", "run / pause"},
     {"Right arrow", "one step (pauses first; hold to repeat); in the history: one saved state forward"},
@@ -27,7 +27,8 @@ inline constexpr std::array<KeyHelp, 20> kKeyHelp = {{
     {"Ctrl+Q", "quit"},
     {"Right-drag", "pan"},
     {"Wheel", "zoom about the cursor"},
-    {"Left-drag on a body or particle", "pull it with a spring towards the pointer"},
+    {"Left-drag on a body or particle", "pull it with a spring towards the pointer (on a flexible body its anchor walks there at a speed the material follows)"},
+    {"Shift + left-drag", "a hard pull: the anchor ten times faster, its force limit ten times higher"},
     {"Ctrl+click on a slider", "type its value"},
     {"Enter in a number field", "apply the value typed"},
     {"Pointer over a panel", "keys and mouse act on the panel, not the picture"},

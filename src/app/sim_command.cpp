@@ -30,7 +30,7 @@ bool same_live_settings(const LiveSettings& a, const LiveSettings& b) {
          a.correction.alpha == b.correction.alpha && a.correction.beta == b.correction.beta &&
          a.correction.tolerance == b.correction.tolerance &&
          a.correction.max_iterations == b.correction.max_iterations && a.bond_damping == b.bond_damping &&
-         a.global_damping == b.global_damping && a.fracture == b.fracture;
+         a.global_damping == b.global_damping && a.fracture == b.fracture && a.allow_unstable == b.allow_unstable;
 }
 
 const char* live_parameter_keys() {

@@ -30,10 +30,10 @@ std::string describe_settings(const LiveSettings& s) {
   char text[256];
   std::snprintf(text, sizeof text,
                 "integrator=%s dt=%g correction=%s alpha=%g beta=%g tolerance=%g bond_damping=%g "
-                "global_damping=%g fracture=%s",
+                "global_damping=%g fracture=%s%s",
                 s.integrator.c_str(), s.dt, methods[static_cast<int>(s.correction.method)],
                 s.correction.alpha, s.correction.beta, s.correction.tolerance, s.bond_damping,
-                s.global_damping, s.fracture ? "on" : "off");
+                s.global_damping, s.fracture ? "on" : "off", s.allow_unstable ? " (dt past the stable step allowed)" : "");
   return text;
 }
 

@@ -93,6 +93,11 @@ CLI::App* add_stability_subcommand(CLI::App& app, StabilityOptions& o) {
 void add_scene_options(CLI::App* command, std::vector<std::string>& overrides) {
   command->add_option("--set", overrides, "Override a scene value, e.g. --set solver.dt=1e-4 (repeatable)")
       ->type_name("KEY=VALUE");
+  // the same as --set solver.allow_unstable=true, in its place among the overrides
+  command->add_flag_callback(
+      "--allow-unstable", [&overrides] { overrides.push_back("solver.allow_unstable=true"); },
+      "Run an explicit step above the stable limit instead of refusing it (to watch it diverge: "
+      "the run ends with the numerical-failure diagnostic, exit 3)");
 }
 
 // The deformation magnification of `run --render` and `gui`.

@@ -187,6 +187,10 @@ class SceneBuilder {
     solver.dt_safety = in.number("dt_safety", solver.dt_safety, Sign::kPositive);
     if (solver.dt_safety > 1.0)
       in.fail("dt_safety", "must be in (0, 1] (a fraction of the critical step), found " + format_number(solver.dt_safety));
+    solver.allow_unstable = in.boolean("allow_unstable", solver.allow_unstable);
+    if (solver.allow_unstable && solver.auto_substep)
+      in.fail("allow_unstable", "cannot be true with auto_substep = true (sub-steps keep every step stable); "
+                                "set one of them");
     solver.threads = static_cast<int>(in.integer("threads", solver.threads, 0));
     // HHT-alpha is unconditionally stable only for alpha in [-1/3, 0]
     solver.hht_alpha = in.number("hht_alpha", solver.hht_alpha);

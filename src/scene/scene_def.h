@@ -228,6 +228,8 @@ struct SolverDef {
   double output_interval = 0.0;    // simulated time between series.csv rows; 0: every 10 steps
   bool auto_substep = false;       // explicit PD: sub-step when dt > safety * dt_crit
   double dt_safety = 0.8;          // fraction of the critical step allowed
+  // explicit PD: a dt above the allowed step runs (to watch it diverge) instead of being refused
+  bool allow_unstable = false;
   int threads = 0;                 // 0: all cores
   double hht_alpha = -0.1;         // "hht": numerical damping alpha in [-1/3, 0] (0: trapezoidal rule)
 };

@@ -18,6 +18,7 @@
 #include "model/system_model.h"
 #include "solve/dynamics.h"
 #include "solve/integrator.h"
+#include "solve/mouse_grip.h"
 
 namespace periflex {
 
@@ -101,6 +102,8 @@ struct Simulation::Impl {
   double initial_gravity = 0.0;    // potential of gravity at t = 0
   double energy_scale = 0.0;       // for the divergence check
   double critical_step = 0.0;      // min over the flexible bodies (0: none)
+  GripLimits grip;                 // of the mouse's grab of a flexible body (mouse_grip.h)
+  bool grip_hard = false;          // the grab is a hard one (MouseSpring::hard)
   // passages through singular positions (rank monitoring): the energy balance when the rank
   // first changed or the Jacobian came near losing it, checked when the rank is back and the
   // position left behind, so a jump onto another branch is no silent one
@@ -117,9 +120,17 @@ struct Simulation::Impl {
   bool stability_bound_applies() const {
     return critical_step > 0.0 && integrator->is_explicit() && !integrator->is_adaptive();
   }
+  // sub-steps only when asked for (solver.auto_substep): a step past the limit run on purpose
+  // (solver.allow_unstable) is taken whole
   int substeps_for(double h) const {
-    if (!stability_bound_applies() || !step_exceeds_allowed(h)) return 1;
+    if (!scene.solver.auto_substep || !stability_bound_applies() || !step_exceeds_allowed(h)) return 1;
     return static_cast<int>(std::ceil(h / allowed_step() * (1 - 1e-12)));
+  }
+  // A step above the allowed one runs only when asked for (solver.allow_unstable, or the
+  // window's dt confirmed past the limit): to watch an explicit step diverge.
+  bool unstable_allowed() const { return scene.solver.allow_unstable || live.allow_unstable; }
+  bool past_stable_step() const {
+    return stability_bound_applies() && !scene.solver.auto_substep && step_exceeds_allowed(live.dt);
   }
   std::string stability_message(double dt) const {
     return "solver.dt = " + number(dt) + " s is above dt_safety * critical step = " + number(allowed_step()) +
@@ -226,6 +237,7 @@ void Simulation::Impl::build_info() {
     w.push_back(stability_message(scene.solver.dt) +
                 (scene.solver.auto_substep ? "; each step is split into " +
                                                  std::to_string(substeps_for(scene.solver.dt)) + " sub-steps"
+                 : unstable_allowed()      ? "; run anyway (solver.allow_unstable): expect it to diverge"
                                            : "; lower solver.dt or set solver.auto_substep = true"));
   }
   // bodies that start inside each other are pushed apart at once, with the full penalty force
@@ -255,7 +267,7 @@ void Simulation::Impl::build_info() {
 }
 
 void Simulation::Impl::check_contact_steps() const {
-  if (!stability_bound_applies() || scene.solver.auto_substep) return;
+  if (!stability_bound_applies() || scene.solver.auto_substep || unstable_allowed()) return;
   const double safety = scene.solver.dt_safety;
   for (const auto& contact : model->contacts) {
     const double with = contact->critical_time_step(), without = contact->bond_critical_time_step();
@@ -290,9 +302,9 @@ void Simulation::Impl::initialize() {
   // a contact stiffness that alone makes the step unstable is bad input: name it
   check_contact_steps();
   // explicit integration of particles is bounded by their critical step: a step the input chose
-  // above it is bad input, named where it was set (scene line, --set or --dt); a step changed
-  // while running (the GUI's live settings) is a numerical stop
-  if (stability_bound_applies() && step_exceeds_allowed(live.dt) && !scene.solver.auto_substep) {
+  // above it is bad input, named where it was set (scene line, --set or --dt), unless the input
+  // asked to run past it; a step changed while running (the GUI's live settings) is a numerical stop
+  if (past_stable_step() && !unstable_allowed()) {
     const std::string remedy = "lower solver.dt below " + number(allowed_step()) + " or set solver.auto_substep = true";
     if (live.dt == scene.solver.dt)
       throw InputError(scene.locate("solver.dt"), stability_message(live.dt) + "; " + remedy);
@@ -350,6 +362,8 @@ void Simulation::Impl::advance(double t_end) {
   const double forces0 = dynamics->force_seconds(), constraints0 = dynamics->constraint_seconds();
   double fracture_seconds = 0.0;
   try {
+    // the mouse's anchor waits while it pulls harder than its limit
+    if (auto& mouse = dynamics->mouse_spring()) hold_anchor_within_force(*mouse, time, h, state.q, grip.max_force);
     const int n = substeps_for(h);
     const double t0 = time;
     for (int k = 0; k < n; ++k) {
@@ -416,6 +430,12 @@ void Simulation::Impl::advance(double t_end) {
     NumericalDiagnostic d = error.diagnostic();
     if (d.step < 0) d.step = steps + 1;
     if (d.time == 0.0) d.time = time;
+    // a run past the stable step on purpose: the failure is the divergence it was run to show
+    if (past_stable_step()) {
+      d.cause = stability_message(live.dt) + ", run past it on purpose (solver.allow_unstable): the explicit step "
+                "diverged, as it must; " + d.cause;
+      d.remedy = "lower solver.dt below " + number(allowed_step()) + " s to run stably";
+    }
     state.q = saved.q;
     state.qd = saved.qd;
     state.work = saved.work;
@@ -670,6 +690,7 @@ Simulation::Simulation(const SceneDef& scene) : impl_(std::make_unique<Impl>()) 
   s.live.integrator = s.integrator->name();
   s.choose_fracture_order();
   s.live.dt = scene.solver.dt;
+  s.live.allow_unstable = scene.solver.allow_unstable;
   s.live.correction = scene.solver.correction;
   s.live.fracture = true;
   for (const auto& flex : s.model->flex_bodies) {
@@ -1057,6 +1078,16 @@ void Simulation::fill_snapshot(Snapshot& out) const {
   out.violation_position = s.dynamics->position_violation(s.time, q);
   out.violation_velocity = s.dynamics->velocity_violation(s.time, q, qd);
   out.broken_bonds = s.broken_bonds;
+  // what the mouse holds: the anchor, the pull and its limits
+  out.mouse = Snapshot::MouseGrip{};
+  if (const auto& mouse = s.dynamics->mouse_spring()) {
+    out.mouse.held = true;
+    out.mouse.anchor = mouse->target_at(s.time);
+    out.mouse.target = mouse->target;
+    out.mouse.force = grip_force(*mouse, s.time, q);
+    out.mouse.max_speed = mouse->speed;
+    out.mouse.max_force = mouse->point.body >= 0 ? 0.0 : s.grip.max_force;
+  }
 }
 
 LiveSettings Simulation::settings() const { return impl_->live; }
@@ -1072,7 +1103,8 @@ void Simulation::apply(const LiveSettings& settings) {
   // try the candidate integrator in place (the stability bound depends on it); a refusal
   // puts the running one back. With the same integrator nothing is swapped.
   if (next) std::swap(next, s.integrator);
-  if (s.stability_bound_applies() && s.step_exceeds_allowed(dt) && !s.scene.solver.auto_substep) {
+  const bool allowed = settings.allow_unstable || s.scene.solver.allow_unstable;
+  if (s.stability_bound_applies() && s.step_exceeds_allowed(dt) && !s.scene.solver.auto_substep && !allowed) {
     const std::string message = s.stability_message(dt);
     if (next) std::swap(next, s.integrator);  // keep the running configuration
     throw InputError({"", 0, 0, "solver.dt"}, message + "; lower it below " + number(s.allowed_step()) +
@@ -1082,6 +1114,7 @@ void Simulation::apply(const LiveSettings& settings) {
   s.choose_fracture_order();
   if (dt != s.live.dt) s.clock.reset(s.time, dt);
   s.live.dt = dt;
+  s.live.allow_unstable = allowed;
   s.live.correction = settings.correction;
   s.dynamics->set_correction(settings.correction);
   s.live.bond_damping = settings.bond_damping;
@@ -1166,9 +1199,17 @@ double Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
   std::optional<MouseSpringForce>& held = s.dynamics->mouse_spring();
   if (held && spring->stiffness <= 0.0 && held->grabbed_body == spring->body &&
       held->grabbed_particle == spring->particle) {
+    // (an anchor waiting for the body keeps waiting: its walk resumes where it stands)
     held->from = held->target_at(s.time);
-    held->since = s.time;
+    held->since = std::max(held->since, s.time);
     held->target = spring->target;
+    if (held->speed > 0.0) {
+      // a hard grip (Shift) taken or let go during the drag
+      const double factor = spring->hard == s.grip_hard ? 1.0 : spring->hard ? kHardGripFactor : 1.0 / kHardGripFactor;
+      held->speed *= factor;
+      s.grip.max_force *= factor;
+      s.grip_hard = spring->hard;
+    }
     return held->stiffness;
   }
 
@@ -1207,10 +1248,24 @@ double Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
       const Eigen::VectorXd& q = s.state.q;
       const Vec2 grabbed(q[offset + 2 * (spring->particle - first)], q[offset + 2 * (spring->particle - first) + 1]);
       const double reach = flex->horizon();
-      // the patch starts where it is and follows the pointer at most one horizon per 200 steps
+      // the patch starts where it is and its anchor walks to the pointer at a speed the material
+      // follows, pulling at most with the force the patch carries (mouse_grip.h): a pull, not
+      // an impact, however fast the hand moved in the window's slow motion
+      const auto def = std::find_if(s.scene.flex_bodies.begin(), s.scene.flex_bodies.end(),
+                                    [&](const FlexBodyDef& d) { return d.name == flex->name(); });
+      const double density = flex->volumes()[spring->particle - first] > 0.0
+                                 ? flex->masses()[spring->particle - first] / flex->volumes()[spring->particle - first]
+                                 : 0.0;
+      if (def != s.scene.flex_bodies.end() && density > 0.0) {
+        s.grip = grip_limits(def->material.youngs_modulus, density, flex->critical_stretch(), reach, def->thickness,
+                             spring->hard);
+      } else {
+        s.grip = GripLimits{dt > 0.0 ? reach / (200.0 * dt) : 0.0, 0.0};
+      }
+      s.grip_hard = spring->hard;
       force.from = grabbed;
       force.since = s.time;
-      force.speed = dt > 0.0 ? reach / (200.0 * dt) : 0.0;
+      force.speed = s.grip.max_speed;
       double omega = omega_stable;
       if (s.critical_step > 0.0 && dt > 0.0) {
         const double ratio = std::min(1.0, dt / s.critical_step);

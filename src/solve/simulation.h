@@ -59,6 +59,9 @@ struct LiveSettings {
   double bond_damping = 0.0;        // applied to every flexible body
   double global_damping = 0.0;
   bool fracture = true;
+  // the step may be above the explicit stability limit (solver.allow_unstable, or confirmed in
+  // the window); apply() refuses such a step without it
+  bool allow_unstable = false;
 };
 
 // A spring from a body point (or particle) to a point the mouse holds.
@@ -69,6 +72,9 @@ struct MouseSpring {
   Vec2 target = Vec2::Zero();       // global
   // 0: chosen from the mass held and the scene's time scales (Simulation::set_mouse_spring)
   double stiffness = 0.0;
+  // a particle grab's anchor walks to the target at a speed the material follows and its pull is
+  // limited (set_mouse_spring); hard: ten times faster and stronger (Shift in the window)
+  bool hard = false;
 };
 
 class Simulation {

@@ -110,6 +110,18 @@ struct Snapshot {
   long broken_bonds = 0;
   double max_damage = 0.0;
 
+  // What the mouse holds (Simulation::set_mouse_spring): the anchor the spring pulls towards,
+  // which walks to the pointer at a capped speed in simulated time, the spring's pull now and
+  // the limits of the grip. held is false when the mouse holds nothing.
+  struct MouseGrip {
+    bool held = false;
+    Vec2 anchor = Vec2::Zero(), target = Vec2::Zero();
+    double force = 0.0;      // [N] stiffness times the anchor's lead on what is held
+    double max_force = 0.0;  // [N] the anchor waits while the pull is above it (0: no limit)
+    double max_speed = 0.0;  // [m/s] of the anchor in simulated time (0: it jumps to the pointer)
+  };
+  MouseGrip mouse;
+
   // One row of series.csv at this instant (output/series_row.h) and its column names, for the
   // window's plots: filled by the window's model only, empty elsewhere.
   std::shared_ptr<const std::vector<std::string>> series_columns;

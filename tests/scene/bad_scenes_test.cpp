@@ -64,6 +64,8 @@ const BadCase kBadCases[] = {
     {"missing_material.toml", 2, "flex_body.plate.material", "missing required key 'material'"},
     {"float_threads.toml", 3, "solver.threads", "expected an integer"},
     {"hht_alpha_out_of_range.toml", 4, "solver.hht_alpha", "must be in [-1/3, 0]"},
+    {"allow_unstable_with_auto_substep.toml", 4, "solver.allow_unstable", "cannot be true with auto_substep = true"},
+    {"allow_unstable_not_boolean.toml", 3, "solver.allow_unstable", "expected a boolean"},
     {"missing_joint_name.toml", 8, "joint.0.name", "missing required key 'name'"},
     {"state_based_nu_half_plane_strain.toml", 12, "flex_body.plate.material.poisson_ratio", "outside (-1, 0.5) in plane strain"},
     {"state_based_nu_above_half_plane_stress.toml", 11, "flex_body.plate.material.poisson_ratio", "outside (-1, 0.5] in plane stress"},

@@ -398,7 +398,7 @@ void GuiApp::panel_export() {
   }
 
   ImGui::Separator();
-  ImGui::TextWrapped("Record: a folder for a PNG sequence, or a .mp4 file (needs ffmpeg)");
+  ImGui::TextWrapped("Record: a folder for a PNG sequence, or a movie file: .mp4, .webm, .mkv, .gif or .avi (needs ffmpeg)");
   ImGui::InputText("##record", record_path_, sizeof record_path_);
   dump_.note_item("record_path");
   if (record_interval_ <= 0.0) record_interval_ = status_.end_time > 0.0 ? status_.end_time / 200.0 : 0.01;

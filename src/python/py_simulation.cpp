@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <fstream>
 #include <stdexcept>
 
@@ -102,10 +104,11 @@ void PySimulation::step(long n) {
 
 void PySimulation::advance_to(double t) {
   if (!std::isfinite(t)) throw py::value_error("advance_to: t must be finite");
-  if (sim_->reached(t)) return;
-  if (t < sim_->time())
+  // a time already passed (beyond the clock's rounding) is refused, not silently ignored
+  if (t < sim_->time() && sim_->time() - t > 1e-12 * std::max(1.0, std::abs(t)))
     throw py::value_error("advance_to: t = " + std::to_string(t) + " s is before the time now, " +
                           std::to_string(sim_->time()) + " s");
+  if (sim_->reached(t)) return;
   // step_toward takes no step once the time is t: the count is an upper bound only
   step_interruptibly(std::numeric_limits<long>::max(), [this, t] { return sim_->step_toward(t); });
 }

@@ -27,7 +27,7 @@ def per_step(sim, one_call):
 
 
 def main():
-    sim = periflex.Simulation(SCENE, overrides={"solver.end_time": 1e6})
+    sim = periflex.Simulation(SCENE, overrides={"solver.end_time": 1e3})
     sim.step(100)
     batched, single = [], []
     for _ in range(7):

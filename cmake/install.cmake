@@ -29,4 +29,8 @@ if(PERIFLEX_WITH_GL)
 else()
   set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "gnuplot-nox")
 endif()
+# the Python module (lib/python3/dist-packages/periflex) needs an interpreter and NumPy
+if(PERIFLEX_WITH_PYTHON)
+  string(APPEND CPACK_DEBIAN_PACKAGE_RECOMMENDS ", python3, python3-numpy")
+endif()
 include(CPack)

@@ -9,6 +9,7 @@ packages=(
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev gnuplot-nox libdeflate-dev
   libsuitesparse-dev libopenblas0-serial
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 if [[ "${1:-}" != "--compute-only" ]]; then
   packages+=(

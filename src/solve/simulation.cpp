@@ -708,6 +708,8 @@ Simulation::~Simulation() = default;
 const SceneDef& Simulation::scene() const { return impl_->scene; }
 const ModelInfo& Simulation::info() const { return impl_->info; }
 double Simulation::time() const { return impl_->time; }
+const Eigen::VectorXd& Simulation::coordinates() const { return impl_->state.q; }
+const Eigen::VectorXd& Simulation::velocities() const { return impl_->state.qd; }
 long Simulation::step_count() const { return impl_->steps; }
 double Simulation::end_time() const { return impl_->scene.solver.end_time; }
 Simulation::Timing Simulation::timing() const { return impl_->timing; }

@@ -103,6 +103,11 @@ class Simulation {
   double time() const;
   long step_count() const;
   double end_time() const;
+  // The coordinates q and velocities qd as they stand (solve/sim_state.h's layout): for readers
+  // that look at them in place (the Python module's arrays). Their storage stays where it is for
+  // the simulation's life; only stepping and restore_state change the values.
+  const Eigen::VectorXd& coordinates() const;
+  const Eigen::VectorXd& velocities() const;
 
   std::vector<std::string> probe_columns() const;  // "probe.<name>.x", ...
   // The columns of one probe: position and velocity, and the angle and angular velocity of a

@@ -58,4 +58,15 @@ if command -v xvfb-run >/dev/null; then
     --screenshot window.png >gui.log 2>&1 || fail "gui exited $?: $(tail -3 gui.log)"
   [[ -s window.png ]] || fail "the window wrote no screenshot"
 fi
+# the Python module, when it was built: imported from the moved prefix and stepped
+package=$prefix/lib/python3/dist-packages
+if [[ -f $package/periflex/__init__.py ]]; then
+  python=$(sed -n 's/^Python3_EXECUTABLE:[A-Z]*=//p' "$build/CMakeCache.txt")
+  PYTHONPATH=$package "${python:-python3}" -c "
+import periflex
+sim = periflex.Simulation('$scenes/pendulum.toml')
+sim.step(10)
+assert sim.steps == 10 and sim.body_poses.shape == (1, 3)
+print('python module:', periflex.__file__)" || fail "the installed Python module does not run"
+fi
 echo "PASS ($mode): $prefix"

@@ -1,0 +1,101 @@
+"""periflex from Python: flexible multibody dynamics in 2D with peridynamic bodies that crack.
+
+    import periflex
+    sim = periflex.Simulation("scenes/notched_plate.toml", overrides={"solver.dt": 2e-7})
+    sim.advance_to(1e-4)
+    print(sim.time, sim.damage.max(), sim.series_row()["fracture"])
+
+The scene is loaded, checked and stepped by the program's own code in this process; errors are
+raised with the program's messages (InputError, a ValueError; NumericalError, a RuntimeError).
+"""
+
+import os as _os
+
+from . import _toml
+from ._periflex import InputError, NumericalError, integrator_names, __version__  # noqa: F401
+from ._periflex import _Simulation
+
+__all__ = ["Simulation", "InputError", "NumericalError", "integrator_names", "series_units", "__version__"]
+
+
+def _override_text(key, value):
+    """One "key.path=value" override as `periflex run --set` takes it (the value as TOML)."""
+    return f"{key}={_toml.value(value, key)}"
+
+
+def _setting_text(value):
+    if isinstance(value, bool):
+        return "on" if value else "off"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+class Simulation(_Simulation):
+    """A periflex simulation in this process.
+
+    Simulation(scene, overrides=None)
+
+    scene: a path to a scene file (str or os.PathLike), TOML text (a str holding a newline), or
+        a dict of the scene's tables (lists of dicts for [[body]], [[flex_body]], ...).
+    overrides: {"solver.dt": 2e-7, "flex_body.plate.material.fracture_energy": 5.0}: scene keys
+        set as `periflex run --set key=value` sets them, validated like the file's own values.
+
+    Raises InputError (a ValueError) with the program's message, naming file, line, column and
+    key, for a scene the program would refuse.
+
+    The particle arrays (positions, velocities) and the rigid body arrays (body_poses,
+    body_velocities) are read-only views of the simulation's state, without copies; damage,
+    broken_bonds, displacement and reference_positions are copies made when read.
+    """
+
+    def __init__(self, scene, overrides=None):
+        texts = [_override_text(k, v) for k, v in (overrides or {}).items()]
+        if isinstance(scene, dict):
+            super().__init__("", _toml.dumps(scene), "<dict>", texts)
+        elif isinstance(scene, _os.PathLike) or (isinstance(scene, str) and "\n" not in scene):
+            super().__init__(_os.fspath(scene), "", "", texts)
+        elif isinstance(scene, str):
+            super().__init__("", scene, "<string>", texts)
+        else:
+            raise TypeError(f"scene: expected a path, TOML text or a dict, not {type(scene).__name__}")
+
+    @classmethod
+    def from_checkpoint(cls, path, scene, overrides=None):
+        """A simulation of `scene` (with `overrides`) continued from the checkpoint file `path`.
+
+        The file must have been written for the same scene text and overrides (write_checkpoint
+        or `periflex run --checkpoint-every` with the same --set values); InputError otherwise.
+        """
+        sim = cls(scene, overrides)
+        sim.restore_checkpoint(_os.fspath(path))
+        return sim
+
+    def write_checkpoint(self, path):
+        """Write the state to a checkpoint file (the format of `periflex run --checkpoint-every`)."""
+        super().write_checkpoint(_os.fspath(path))
+
+    def restore_checkpoint(self, path):
+        """Put back the state of a checkpoint file written for this scene and overrides."""
+        super().restore_checkpoint(_os.fspath(path))
+
+    def set(self, key, value):
+        """Change a live setting between steps, as the window's parameter panel does.
+
+        Keys: dt, integrator, correction (none, baumgarte, projection), alpha, beta, tolerance,
+        max_iterations, bond_damping, global_damping, fracture (True/False), also spelled as
+        scene keys (solver.dt, solver.integrator, solver.correction.method,
+        solver.correction.alpha, flex_body.bond_damping, ...; the damping and fracture switch
+        apply to every flexible body, as in the window). Anything else, or a refused value (a
+        dt above the explicit stability limit), raises InputError naming the key; the settings
+        stay as they were.
+        """
+        self._set(key, _setting_text(value))
+
+    def __repr__(self):
+        return f"<periflex.Simulation '{self.scene_name}' t={self.time:.6g} s, {self.steps} steps>"
+
+
+def series_units(sim):
+    """The unit of each series.csv column of `sim` (as sim.series_units())."""
+    return sim.series_units()

@@ -1,0 +1,83 @@
+// The Simulation a Python script drives (the module periflex, python/): a scene loaded as the
+// program loads it, stepped with the interpreter free to run other threads, interrupted by
+// Ctrl-C between steps, its state saved and restored as bytes, its live settings changed as the
+// window changes them. Arrays and dictionaries are made in py_arrays.cpp and module.cpp.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene/scene_def.h"
+#include "solve/simulation.h"
+#include "solve/snapshot.h"
+
+namespace periflex {
+
+// Where a scene comes from: a file, or TOML text with the name its messages show.
+struct SceneSource {
+  std::string path;          // a file to read, or "" for text
+  std::string text;          // TOML text (path empty)
+  std::string display_name;  // the name messages give the text ("<string>")
+};
+
+class PySimulation {
+ public:
+  // Loads the scene with the program's checks (the integrator exists, the scene's budget, the
+  // warnings about geometry that does nothing). Throws InputError as `periflex run` would.
+  PySimulation(const SceneSource& source, const std::vector<std::string>& overrides);
+
+  Simulation& sim() { return *sim_; }
+  const Simulation& sim() const { return *sim_; }
+  const SceneSource& source() const { return source_; }
+  const std::vector<std::string>& overrides() const { return overrides_; }
+  // the warnings the program prints to stderr when it loads the scene
+  const std::vector<std::string>& scene_warnings() const { return scene_warnings_; }
+
+  // n steps of dt (the GIL released; Ctrl-C checked at least every kSignalCheckSeconds).
+  void step(long n);
+  // Steps up to exactly t (the last one shortened), as Simulation::advance_to.
+  void advance_to(double t);
+
+  // Changes one live setting as the window's script does (keys of app/sim_command.h, also
+  // spelled as in the scene: "solver.dt", "solver.correction.alpha", ...). Throws InputError
+  // naming the key for an unknown key or a refused value; the settings stay as they were.
+  void set(const std::string& key, const std::string& value);
+
+  // The state as bytes (output/state_codec.h) and back.
+  std::vector<uint8_t> save_state() const;
+  void restore_state(const uint8_t* bytes, size_t size);
+
+  // A checkpoint file as `periflex run --checkpoint-every` writes it, and back: the file names
+  // the scene by a hash of its text and overrides, so it is restored only into the same scene.
+  void write_checkpoint(const std::string& path);
+  void restore_checkpoint(const std::string& path);
+
+  // A snapshot filled now (positions in floats, damage, bond counts), reused between calls.
+  const Snapshot& snapshot();
+
+ private:
+  // Steps `n` times `one_step` with the GIL released, returning to check signals.
+  template <class OneStep>
+  void step_interruptibly(long n, OneStep one_step);
+  uint64_t scene_hash() const;
+  // Throws RuntimeError while another thread steps this simulation (stepping runs without the
+  // GIL, so two threads could otherwise step, or restore and step, at once).
+  void refuse_when_busy(const char* what) const;
+
+  std::atomic<bool> busy_{false};
+
+  SceneSource source_;
+  std::vector<std::string> overrides_;
+  std::vector<std::string> scene_warnings_;
+  std::unique_ptr<Simulation> sim_;
+  Snapshot snapshot_;
+  long snapshot_step_ = -1;       // the step snapshot_ was filled at (-1: never)
+  double snapshot_time_ = -1.0;
+};
+
+// Seconds of stepping between two looks for Ctrl-C.
+constexpr double kSignalCheckSeconds = 0.05;
+
+}  // namespace periflex

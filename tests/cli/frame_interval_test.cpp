@@ -18,7 +18,7 @@ constexpr double kLimit = 180.0;
 
 // The frames the default interval gives: k * interval for k = 0, 1, ... up to the end, the
 // interval being max(1, floor(end / 100 / dt)) steps.
-long default_frames(double end, double dt) {
+[[maybe_unused]] long default_frames(double end, double dt) {
   const double interval = std::max(1.0, std::floor(end / 100.0 / dt + 1e-9)) * dt;
   return static_cast<long>(std::floor(end / interval + 1e-9)) + 1;
 }

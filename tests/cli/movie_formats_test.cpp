@@ -21,7 +21,7 @@ constexpr double kLimit = 180.0;
 
 // Whether this machine's ffmpeg lists `name` among its encoders (asked here, apart from the
 // program's own probe).
-bool ffmpeg_has_encoder(const std::string& name) {
+[[maybe_unused]] bool ffmpeg_has_encoder(const std::string& name) {
   return std::system(("ffmpeg -hide_banner -encoders 2>/dev/null | grep -qw -- '" + name + "'").c_str()) == 0;
 }
 

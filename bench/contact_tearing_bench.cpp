@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "core/cpu_time.h"
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"
 
@@ -39,16 +40,10 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
-double thread_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 double seconds_of_step(Simulation& sim) {
-  const double start = thread_seconds();
+  const double start = thread_cpu_seconds();
   sim.step();
-  return thread_seconds() - start;
+  return thread_cpu_seconds() - start;
 }
 
 std::string number(double v) {

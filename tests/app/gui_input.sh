@@ -349,14 +349,17 @@ case "$case_name" in
     ;;
   pull)
     # the notched plate with its grips held still (any crack is the drag's): pressed just right
-    # of the notch's mouth and dragged 10 mm to the right in about a second, as a hand pulls. The
-    # anchor walks at its capped speed in simulated time and its pull stays under its limit: the
-    # notch opens and a crack runs up from its tip, and the plate is not blown to dust
+    # of the notch, below its tip, and dragged 10 mm to the right in about a second, as a hand
+    # pulls. The anchor walks at its capped speed in simulated time and its pull stays under its
+    # limit: the notch opens and a crack runs up from its tip, and the plate is not blown to dust.
+    # (A patch pressed at the notch's mouth, 3 mm from the free edge, may also shear off the thin
+    # strip between it and the held right grip: that strip gives at the same pull as the notch tip,
+    # so MouseGrip.DragAcrossTheNotchTearsTheLigamentWithoutDust judges that case by its dust.)
     start notched_plate.toml --set driver.left_turn.function.rate=0 --set driver.right_turn.function.rate=0
     mapping=""
     wait_until 20 "a steady view" '[[ -n "$mapping" && "$mapping" == "$(state world_to_window)" ]] || { mapping=$(state world_to_window); sleep 0.5; false; }'
-    read -r x y < <(to_window 0.004 -0.017)
-    read -r x_end _ < <(to_window 0.014 -0.017)
+    read -r x y < <(to_window 0.003 -0.013)
+    read -r x_end _ < <(to_window 0.013 -0.013)
     xdotool mousemove --window "$window" "$x" "$y"
     wait_until 10 "a particle under the pointer" '[[ -n "$(state pointed)" ]]'
     xdotool mousedown 1
@@ -376,10 +379,15 @@ case "$case_name" in
     echo "t = $(state time) s: $dust of $total particles over half damaged, $cracked over a quarter in x $x0 .. $x1," \
       "y $y0 .. $y1; pull $force N of $max_force N, anchor $speed m/s at ($ax, $ay)"
     holds "$dust < 0.03 * $total" || fail "$dust of $total particles lost over half their bonds: dust"
-    holds "$x0 > -0.006 && $x1 < 0.006" || fail "damage spreads over x $x0 .. $x1, not a crack along the ligament"
+    # a crack is a line of damaged particles (its two faces, a little more where it kinks: at most
+    # four per millimetre of its height at dx = 1 mm), not an area; it leans away from the pull, so
+    # its x reach is not judged, only that the held-still left side stays whole
+    holds "$x0 > -0.006" || fail "damage reaches x = $x0, into the left half the drag does not pull"
+    holds "$cracked < 4 * ($y1 - $y0) / 0.001 + 8" || \
+      fail "$cracked particles over a quarter damaged in a band $(awk -v a="$y0" -v b="$y1" 'BEGIN { print b - a }') m high: an area, not a crack"
     holds "$y0 > -0.016" || fail "damage reaches y = $y0, below the notch tip: the patch held, not the notch, tore"
     holds "$max_force > 0 && $force <= 1.2 * $max_force" || fail "pull $force N over its limit $max_force N"
-    holds "$ax < 0.014" || fail "the anchor reached the pointer ($ax): it did not walk at its capped speed"
+    holds "$ax < 0.013" || fail "the anchor reached the pointer ($ax): it did not walk at its capped speed"
     wait_until 10 "the release" '[[ -z "$(state grabbed)" ]]'
     quit
     ;;

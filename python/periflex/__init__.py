@@ -10,12 +10,27 @@ raised with the program's messages (InputError, a ValueError; NumericalError, a 
 """
 
 import os as _os
+import pathlib as _pathlib
 
 from . import _toml
-from ._periflex import InputError, NumericalError, integrator_names, __version__  # noqa: F401
+from ._periflex import InputError, NumericalError, integrator_names, render_available, __version__  # noqa: F401
 from ._periflex import _Simulation
 
-__all__ = ["Simulation", "InputError", "NumericalError", "integrator_names", "series_units", "__version__"]
+__all__ = ["Simulation", "InputError", "NumericalError", "integrator_names", "render_available", "series_units",
+           "__version__"]
+
+
+def _installed_resource_root():
+    """share/periflex of the prefix this package is installed under ("" in the build tree).
+
+    The package sits in PREFIX/lib/python3/dist-packages/periflex, the shaders and colour maps
+    in PREFIX/share/periflex, as the program finds them beside its bin/ folder.
+    """
+    here = _pathlib.Path(__file__).resolve().parent
+    for prefix in list(here.parents)[:5]:
+        if (prefix / "share" / "periflex" / "shaders").is_dir():
+            return str(prefix / "share" / "periflex")
+    return ""
 
 
 def _override_text(key, value):
@@ -91,6 +106,24 @@ class Simulation(_Simulation):
         stay as they were.
         """
         self._set(key, _setting_text(value))
+
+    def render(self, width=1280, height=720, field="damage", deform="auto", *, colormap=None, samples=None,
+               overlay=True, camera=None):
+        """The state now as a picture: a (height, width, 3) uint8 RGB array, rows top to bottom.
+
+        Drawn by the program's off-screen renderer (EGL, no display needed) in this process, as
+        `periflex run --snapshot-at T --size WxH` draws its screenshot: the same pixels for the
+        same state. field: damage, displacement, speed or strain. deform: "auto" (the
+        magnification chosen from this picture, as a screenshot's) or a factor K >= 0 (1: true
+        scale, 0: undeformed). colormap: a name of assets/colormaps (default "ember"). samples:
+        multisamples per pixel (default: 4, or 1 from 100k particles on). overlay: the time,
+        scene name, legend and scale bar. camera: (x, y, view height) in metres (default: fitted
+        to the scene). Bad arguments raise InputError naming them; RuntimeError when EGL cannot
+        make a context.
+        """
+        return self._render(int(width), int(height), str(field), str(deform), colormap or "", int(samples or 0),
+                            bool(overlay), [float(c) for c in camera] if camera is not None else [],
+                            _installed_resource_root())
 
     def __repr__(self):
         return f"<periflex.Simulation '{self.scene_name}' t={self.time:.6g} s, {self.steps} steps>"

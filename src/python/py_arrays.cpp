@@ -138,8 +138,9 @@ py::dict series_units(PySimulation& sim) {
 py::dict check_report(PySimulation& py_sim) {
   Simulation& sim = py_sim.sim();
   // as `periflex check`: initial conditions made consistent first (this finds redundant
-  // constraints); a failure there is raised as the program reports it
-  sim.initialize();
+  // constraints); a failure there is raised as the program reports it. Once: a simulation that
+  // has stepped keeps its state (the figures are the first initialisation's)
+  py_sim.initialize_once();
   const ModelInfo& m = sim.info();
   const SceneDef& scene = sim.scene();
   py::dict d;

@@ -75,6 +75,8 @@ void PySimulation::step_interruptibly(long n, OneStep one_step) {
     std::atomic<bool>& busy;
     ~Idle() { busy = false; }
   } idle{busy_};
+  // stepping initialises first (Simulation::step)
+  initialized_ = true;
   using Clock = std::chrono::steady_clock;
   const auto check_every = std::chrono::duration<double>(kSignalCheckSeconds);
   long done = 0;
@@ -142,6 +144,7 @@ void PySimulation::restore_state(const uint8_t* bytes, size_t size) {
   } catch (const std::invalid_argument& e) {
     throw py::value_error(std::string("restore_state: ") + e.what());
   }
+  initialized_ = true;
   snapshot_step_ = -1;
 }
 
@@ -179,6 +182,7 @@ void PySimulation::restore_checkpoint(const std::string& path) {
   if (header.scene_hash != scene_hash())
     throw refuse("written for another scene, or for this one with other overrides");
   sim_->restore_state(state);
+  initialized_ = true;
   snapshot_step_ = -1;
 }
 
@@ -190,6 +194,20 @@ const Snapshot& PySimulation::snapshot() {
     snapshot_time_ = sim_->time();
   }
   return snapshot_;
+}
+
+Snapshot PySimulation::picture_snapshot() {
+  refuse_when_busy("render");
+  initialize_once();
+  return snapshot();
+}
+
+void PySimulation::initialize_once() {
+  refuse_when_busy("initialize");
+  if (initialized_) return;
+  sim_->initialize();
+  initialized_ = true;
+  snapshot_step_ = -1;
 }
 
 }  // namespace periflex

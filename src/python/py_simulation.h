@@ -56,6 +56,12 @@ class PySimulation {
 
   // A snapshot filled now (positions in floats, damage, bond counts), reused between calls.
   const Snapshot& snapshot();
+  // The snapshot a picture is drawn from, as `periflex run` fills it: before the first step, of
+  // the initial conditions made consistent (initialize()), as the run's first frame shows them.
+  Snapshot picture_snapshot();
+  // Makes the initial conditions consistent (Simulation::initialize) unless the simulation has
+  // stepped, been initialised or had a state put back: the state is then left as it is.
+  void initialize_once();
 
  private:
   // Steps `n` times `one_step` with the GIL released, returning to check signals.
@@ -67,6 +73,7 @@ class PySimulation {
   void refuse_when_busy(const char* what) const;
 
   std::atomic<bool> busy_{false};
+  bool initialized_ = false;  // Simulation::initialize called, or made unnecessary
 
   SceneSource source_;
   std::vector<std::string> overrides_;

@@ -17,7 +17,7 @@ from ._periflex import InputError, NumericalError, integrator_names, render_avai
 from ._periflex import _Simulation
 
 __all__ = ["Simulation", "InputError", "NumericalError", "integrator_names", "render_available", "series_units",
-           "__version__"]
+           "run", "study", "sweep", "read_series", "__version__"]
 
 
 def _installed_resource_root():
@@ -132,3 +132,7 @@ class Simulation(_Simulation):
 def series_units(sim):
     """The unit of each series.csv column of `sim` (as sim.series_units())."""
     return sim.series_units()
+
+
+# the commands, after _override_text which run() uses
+from ._commands import read_series, run, study, sweep  # noqa: E402,F401

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "python/py_arrays.h"
+#include "python/py_commands.h"
 #include "python/py_render.h"
 #include "python/py_simulation.h"
 #include "solve/simulation.h"
@@ -97,6 +98,7 @@ PYBIND11_MODULE(_periflex, m) {
   m.attr("NumericalError") = py::handle(numerical_error_type);
   py::register_exception_translator(translate_errors);
 
+  pycommands::bind(m);
   m.def("render_available", &pyrender::available, "True when this build draws pictures (Simulation.render).");
   m.def("integrator_names", &integrator_names, "The integrators this build offers (solver.integrator).");
 

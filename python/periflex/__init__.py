@@ -15,6 +15,7 @@ import pathlib as _pathlib
 from . import _toml
 from ._periflex import InputError, NumericalError, integrator_names, render_available, __version__  # noqa: F401
 from ._periflex import _Simulation
+from . import _periflex as _periflex_core
 
 __all__ = ["Simulation", "InputError", "NumericalError", "integrator_names", "render_available", "series_units",
            "run", "study", "sweep", "read_series", "__version__"]
@@ -65,7 +66,10 @@ class Simulation(_Simulation):
     """
 
     def __init__(self, scene, overrides=None):
-        texts = [_override_text(k, v) for k, v in (overrides or {}).items()]
+        if isinstance(overrides, (list, tuple)):
+            texts = [str(t) for t in overrides]  # "key=value" as --set takes it
+        else:
+            texts = [_override_text(k, v) for k, v in (overrides or {}).items()]
         if isinstance(scene, dict):
             super().__init__("", _toml.dumps(scene), "<dict>", texts)
         elif isinstance(scene, _os.PathLike) or (isinstance(scene, str) and "\n" not in scene):
@@ -76,12 +80,19 @@ class Simulation(_Simulation):
             raise TypeError(f"scene: expected a path, TOML text or a dict, not {type(scene).__name__}")
 
     @classmethod
-    def from_checkpoint(cls, path, scene, overrides=None):
-        """A simulation of `scene` (with `overrides`) continued from the checkpoint file `path`.
+    def from_checkpoint(cls, path, scene=None, overrides=None):
+        """A simulation continued from the checkpoint file `path`.
 
-        The file must have been written for the same scene text and overrides (write_checkpoint
-        or `periflex run --checkpoint-every` with the same --set values); InputError otherwise.
+        Without `scene`, the scene file and overrides recorded beside the checkpoint (run.json,
+        written by `periflex run --checkpoint-every` and by write_checkpoint() of a scene read
+        from a file); InputError when its folder records none (a scene given as text or a dict:
+        pass it). With `scene` (and `overrides`), that scene: the file must have been written
+        for the same scene text and overrides; InputError otherwise.
         """
+        if scene is None:
+            if overrides is not None:
+                raise TypeError("from_checkpoint: overrides without scene; the recorded ones are used")
+            scene, overrides = _periflex_core._recorded_scene(_os.fspath(path))
         sim = cls(scene, overrides)
         sim.restore_checkpoint(_os.fspath(path))
         return sim
@@ -101,11 +112,21 @@ class Simulation(_Simulation):
         max_iterations, bond_damping, global_damping, fracture (True/False), also spelled as
         scene keys (solver.dt, solver.integrator, solver.correction.method,
         solver.correction.alpha, flex_body.bond_damping, ...; the damping and fracture switch
-        apply to every flexible body, as in the window). Anything else, or a refused value (a
-        dt above the explicit stability limit), raises InputError naming the key; the settings
-        stay as they were.
+        apply to every flexible body, as in the window).
+
+        Also a flexible body's constants of breaking, flex_body.NAME.material.fracture_energy
+        (G0) or .critical_stretch: the model is built again with the value (as an override) and
+        continues from the state now, so the bonds broken so far stay broken and the next ones
+        break by the new value. The array views taken before keep showing the old model's
+        state; read them again.
+
+        Anything else, or a refused value (a dt above the explicit stability limit, a G0 out of
+        range), raises InputError naming the key; nothing changes then.
         """
-        self._set(key, _setting_text(value))
+        if key.startswith("flex_body.") and ".material." in key:
+            self._set(key, _toml.value(value, key))
+        else:
+            self._set(key, _setting_text(value))
 
     def render(self, width=1280, height=720, field="damage", deform="auto", *, colormap=None, samples=None,
                overlay=True, camera=None):

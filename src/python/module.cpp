@@ -99,6 +99,7 @@ PYBIND11_MODULE(_periflex, m) {
   py::register_exception_translator(translate_errors);
 
   pycommands::bind(m);
+  m.def("_recorded_scene", &recorded_scene, py::arg("checkpoint_path"));
   m.def("render_available", &pyrender::available, "True when this build draws pictures (Simulation.render).");
   m.def("integrator_names", &integrator_names, "The integrators this build offers (solver.integrator).");
 

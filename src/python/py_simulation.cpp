@@ -114,6 +114,15 @@ void PySimulation::step_interruptibly(long n, OneStep one_step) {
   // stepping initialises first (Simulation::step)
   initialized_ = true;
   using Clock = std::chrono::steady_clock;
+  // a call whose steps take less than kHoldGilSeconds keeps the interpreter: giving the GIL up
+  // and taking it back costs more than such a step (the pendulum's take 2 us), and no other
+  // thread waits longer than the interpreter's own switch interval (5 ms) makes it wait anyway
+  if (n <= kMaxHeldSteps && typical_step_seconds_ > 0.0 && typical_step_seconds_ * n < kHoldGilSeconds) {
+    bool finished = false;
+    for (long done = 0; done < n && !finished; ++done) finished = one_step();
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    return;
+  }
   const auto check_every = std::chrono::duration<double>(kSignalCheckSeconds);
   long done = 0;
   bool finished = false;
@@ -123,10 +132,12 @@ void PySimulation::step_interruptibly(long n, OneStep one_step) {
     {
       py::gil_scoped_release release;
       const auto start = Clock::now();
+      const long before = done;
       do {
         finished = one_step();
         ++done;
       } while (done < n && !finished && Clock::now() - start < check_every);
+      typical_step_seconds_ = std::chrono::duration<double>(Clock::now() - start).count() / double(done - before);
     }
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }

@@ -72,7 +72,8 @@ class PySimulation {
   void initialize_once();
 
  private:
-  // Steps `n` times `one_step` with the GIL released, returning to check signals.
+  // Steps `n` times `one_step` with the GIL released (kept for a call shorter than
+  // kHoldGilSeconds), returning to check signals.
   template <class OneStep>
   void step_interruptibly(long n, OneStep one_step);
   uint64_t scene_hash() const;
@@ -87,6 +88,7 @@ class PySimulation {
 
   std::atomic<bool> busy_{false};
   bool initialized_ = false;  // Simulation::initialize called, or made unnecessary
+  double typical_step_seconds_ = 0.0;  // of the last stretch stepped without the GIL (0: none yet)
 
   SceneSource source_;
   std::vector<std::string> overrides_;
@@ -104,5 +106,8 @@ std::pair<std::string, std::vector<std::string>> recorded_scene(const std::strin
 
 // Seconds of stepping between two looks for Ctrl-C.
 constexpr double kSignalCheckSeconds = 0.05;
+// A call expected to step for less than this keeps the GIL (at most kMaxHeldSteps steps).
+constexpr double kHoldGilSeconds = 50e-6;
+constexpr long kMaxHeldSteps = 64;
 
 }  // namespace periflex

@@ -125,5 +125,5 @@ def sweep(path=None, *, out=None, jobs=0, jobs_file=None, collect=None, quiet=Tr
     exit_code, folder = _periflex._sweep(o)
     table = pathlib.Path(folder) / "sweep.csv"
     if exit_code == 2:
-        raise _periflex.InputError(f"sweep: give a sweep file, or collect=DIR")
+        raise _periflex.InputError("sweep: give a sweep file, or collect=DIR")
     return read_table(table) if table.exists() and not jobs_file else []

@@ -26,7 +26,7 @@ from ._periflex import _Simulation  # noqa: E402
 from . import _periflex as _periflex_core  # noqa: E402
 
 __all__ = ["Simulation", "InputError", "NumericalError", "integrator_names", "render_available", "series_units",
-           "run", "study", "sweep", "read_series", "__version__"]
+           "scenes_folder", "run", "study", "sweep", "read_series", "__version__"]
 
 
 def _installed_resource_root():
@@ -156,6 +156,13 @@ class Simulation(_Simulation):
 
     def __repr__(self):
         return f"<periflex.Simulation '{self.scene_name}' t={self.time:.6g} s, {self.steps} steps>"
+
+
+def scenes_folder():
+    """The folder of the scenes shipped with periflex (notched_plate.toml, pendulum.toml, ...): the
+    installed share/periflex/scenes, else where the program finds them ($PERIFLEX_ROOT, then the
+    source tree the module was built from)."""
+    return _pathlib.Path(_installed_resource_root() or _periflex_core._program_resource_root()) / "scenes"
 
 
 def series_units(sim):

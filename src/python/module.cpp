@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "core/error.h"
+#include "core/resources.h"
 #include "python/py_arrays.h"
 #include "python/py_commands.h"
 #include "python/py_render.h"
@@ -100,6 +101,8 @@ PYBIND11_MODULE(_periflex, m) {
 
   pycommands::bind(m);
   m.def("_recorded_scene", &recorded_scene, py::arg("checkpoint_path"));
+  m.def("_program_resource_root", [] { return find_resource_root(); },
+        "Where the program finds shaders/, assets/ and scenes/ ($PERIFLEX_ROOT, then the source tree).");
   m.def("render_available", &pyrender::available, "True when this build draws pictures (Simulation.render).");
   m.def("integrator_names", &integrator_names, "The integrators this build offers (solver.integrator).");
 

@@ -9,7 +9,7 @@ import numpy as np
 import periflex
 import pytest
 
-from conftest import SCENES, program
+from conftest import ROOT, SCENES, program
 
 COARSE_PLATE = {"flex_body.plate.grid_spacing": 2e-3}
 
@@ -143,3 +143,20 @@ def test_sweep_runs_the_grid_and_returns_sweep_csv(tmp_path):
     with pytest.raises(periflex.InputError):
         path.write_text(SWEEP.format(scene=SCENES / "pendulum.toml").replace("solver.dt", "solver.nothing"))
         periflex.sweep(path, out=tmp_path / "bad", program=program())
+
+
+HOSTILE_REFUSED = [p for p in sorted((ROOT / "tests" / "data" / "hostile" / "scenes").glob("*.toml"))
+                   if b"# expect: 2 " in p.read_bytes()]
+
+
+@pytest.mark.skipif(program() is None, reason="the program is not built")
+@pytest.mark.parametrize("path", HOSTILE_REFUSED, ids=lambda p: p.name)
+def test_run_refuses_hostile_scenes_with_the_program_text(tmp_path, path):
+    # every scene of the corpus the program refuses: periflex.run refuses it with an InputError
+    # whose text is what `periflex run` prints
+    with pytest.raises(periflex.InputError) as caught:
+        periflex.run(path, out=tmp_path / "module")
+    done = subprocess.run([program(), "run", str(path), "--out", str(tmp_path / "program"), "--quiet"],
+                          capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
+    assert f"periflex: error: {caught.value}" in done.stderr

@@ -12,8 +12,6 @@ import os
 import pathlib
 import shutil
 
-import numpy as np
-
 from . import _periflex
 
 
@@ -26,6 +24,8 @@ def _number(text):
 
 def read_series(path):
     """A series.csv as {column: float64 array} (empty arrays when it has no rows)."""
+    import numpy as np  # here: `import periflex` stays quick (NumPy loads with the first array)
+
     with open(path, newline="") as f:
         rows = list(csv.reader(f))
     if not rows:

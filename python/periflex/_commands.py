@@ -74,6 +74,10 @@ def run(scene, overrides=None, *, until=None, dt=None, integrator=None, out=None
     o.camera = "" if camera is None else camera if isinstance(camera, str) else ",".join(repr(float(c)) for c in camera)
     o.draw_contacts, o.plot, o.plot_against = bool(draw_contacts), plot or "", plot_against or ""
     exit_code, folder = _periflex._run(o)
+    if not folder:  # a checkpoint folder drawn, nothing simulated: frames only
+        if exit_code != 0:
+            raise RuntimeError(f"periflex run ended with exit code {exit_code}")
+        return {"series": {}, "summary": {}, "out": ""}
     folder = pathlib.Path(folder)
     summary = json.loads((folder / "summary.json").read_text()) if (folder / "summary.json").exists() else {}
     if exit_code != 0:

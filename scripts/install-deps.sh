@@ -10,6 +10,7 @@ packages=(
   libsuitesparse-dev libopenblas0-serial
   libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
+  python3-matplotlib python3-pil jupyter-nbconvert python3-ipykernel python3-nbformat
 )
 if [[ "${1:-}" != "--compute-only" ]]; then
   packages+=(

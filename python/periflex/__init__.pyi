@@ -1,6 +1,6 @@
 # Type stubs of the package periflex (the compiled part is periflex._periflex).
 import os
-from typing import Any, Mapping, Union
+from typing import Any, Mapping, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -8,6 +8,9 @@ import numpy.typing as npt
 __version__: str
 
 SceneSource = Union[str, os.PathLike[str], Mapping[str, Any]]
+# {"key.path": value}, or ["key.path=value", ...] as --set takes them
+Overrides = Union[Mapping[str, Any], Sequence[str]]
+PathLike = Union[str, os.PathLike[str]]
 
 class InputError(ValueError):
     """Bad scene input or a refused value, with the program's message."""
@@ -26,13 +29,30 @@ class NumericalError(RuntimeError):
     remedy: str
 
 def integrator_names() -> list[str]: ...
+def render_available() -> bool: ...
+def scenes_folder() -> os.PathLike[str]: ...
 def series_units(sim: Simulation) -> dict[str, str]: ...
+def read_series(path: PathLike) -> dict[str, npt.NDArray[np.float64]]: ...
+
+# the program's commands in this process (periflex run / study / sweep)
+def run(scene: PathLike, overrides: Overrides | None = ..., *, until: float | None = ..., dt: float | None = ...,
+        integrator: str | None = ..., out: PathLike | None = ..., threads: int = ..., quiet: bool = ...,
+        vtk_every: int = ..., checkpoint_every: float = ..., checkpoint_dir: PathLike | None = ...,
+        restart: PathLike | None = ..., render: bool = ..., frames: PathLike | None = ...,
+        movie: PathLike | None = ..., frame_every: float = ..., size: str | tuple[int, int] | None = ...,
+        samples: int = ..., fps: float = ..., snapshot_at: float | None = ..., screenshot: PathLike | None = ...,
+        field: str | None = ..., colormap: str | None = ..., camera: str | Sequence[float] | None = ...,
+        deform: str | float | None = ..., draw_contacts: bool = ..., plot: str | None = ...,
+        plot_against: str | None = ...) -> dict[str, Any]: ...
+def study(path: PathLike, *, out: PathLike | None = ..., repeats: int = ..., quiet: bool = ...) -> dict[str, Any]: ...
+def sweep(path: PathLike | None = ..., *, out: PathLike | None = ..., jobs: int = ..., jobs_file: PathLike | None = ...,
+          collect: PathLike | None = ..., quiet: bool = ..., program: PathLike | None = ...) -> list[dict[str, Any]]: ...
 
 class Simulation:
-    def __init__(self, scene: SceneSource, overrides: Mapping[str, Any] | None = ...) -> None: ...
+    def __init__(self, scene: SceneSource, overrides: Overrides | None = ...) -> None: ...
     @classmethod
-    def from_checkpoint(cls, path: str | os.PathLike[str], scene: SceneSource,
-                        overrides: Mapping[str, Any] | None = ...) -> Simulation: ...
+    def from_checkpoint(cls, path: PathLike, scene: SceneSource | None = ...,
+                        overrides: Overrides | None = ...) -> Simulation: ...
     # stepping
     def step(self, n: int = 1) -> None: ...
     def advance_to(self, t: float) -> None: ...
@@ -79,3 +99,7 @@ class Simulation:
     def restore_state(self, state: bytes) -> None: ...
     def write_checkpoint(self, path: str | os.PathLike[str]) -> None: ...
     def restore_checkpoint(self, path: str | os.PathLike[str]) -> None: ...
+    # pictures (the off-screen renderer)
+    def render(self, width: int = ..., height: int = ..., field: str = ..., deform: str | float = ..., *,
+               colormap: str | None = ..., samples: int | None = ..., overlay: bool = ...,
+               camera: Sequence[float] | None = ...) -> npt.NDArray[np.uint8]: ...

@@ -84,3 +84,9 @@ def test_check_agrees_with_the_program():
     assert f"{report['particles']} particles, {report['bonds']} bonds" in printed
     assert f"degrees of freedom    {report['degrees_of_freedom']}" in printed
     assert f"{report['critical_time_step']:g} s" in printed
+
+
+def test_scenes_folder_holds_the_shipped_scenes():
+    import periflex
+
+    assert (periflex.scenes_folder() / "notched_plate.toml").is_file()

@@ -108,7 +108,11 @@ static void parse_frame_size(RunOptions& o) {
   o.height = h;
 }
 
-int run_command(const RunOptions& requested) {
+int run_command(const RunOptions& options) { return run_and_report(options).exit_code; }
+
+RunOutcome run_and_report(const RunOptions& requested) {
+  RunOutcome outcome;
+  std::exception_ptr& failure = outcome.failure;
   const auto wall_start = Clock::now();
   catch_interrupts();
   RunOptions options = requested;
@@ -118,7 +122,10 @@ int run_command(const RunOptions& requested) {
   // asking for frames or a movie is asking for rendering
   if (!options.frames_dir.empty() || !options.movie_path.empty()) options.render = true;
   // a checkpoint folder instead of a scene: its states drawn, nothing simulated
-  if (std::error_code ec; std::filesystem::is_directory(options.scene_path, ec)) return render_checkpoint_folder(options);
+  if (std::error_code ec; std::filesystem::is_directory(options.scene_path, ec)) {
+    outcome.exit_code = render_checkpoint_folder(options);
+    return outcome;
+  }
   SceneDef scene = load_run_scene(options);  // every flag, the scene's budget and the output paths
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
@@ -315,10 +322,13 @@ int run_command(const RunOptions& requested) {
     }
     if (exit_code == kExitOk) summary.status = "ok";
   } catch (const NumericalError& error) {
+    failure = std::current_exception();
     fail("numerical_failure", kExitNumerical, std::string("numerical failure: ") + error.what());
   } catch (const InputError& error) {
+    failure = std::current_exception();
     fail("bad_input", kExitBadInput, std::string("error: ") + error.what());
   } catch (const std::exception& error) {
+    failure = std::current_exception();
     fail("error", kExitOther, std::string("error: ") + error.what());
   }
   progress.finish();
@@ -327,6 +337,7 @@ int run_command(const RunOptions& requested) {
   outputs.finish();
   if (!outputs.frame_error.empty() && exit_code == kExitOk) {
     fail("error", kExitOther, "error: " + outputs.frame_error);
+    failure = std::make_exception_ptr(std::runtime_error(outputs.frame_error));
   }
   const FrameStats& frame_stats = outputs.frame_stats;
 
@@ -355,7 +366,9 @@ int run_command(const RunOptions& requested) {
   if (checkpoints_written > 0) std::printf("; %ld checkpoints in %s", checkpoints_written, options.checkpoint_dir.c_str());
   std::printf("; outputs in %s\n", out_dir.c_str());
   std::fflush(stdout);
-  return exit_code;
+  outcome.exit_code = exit_code;
+  outcome.out_dir = out_dir;
+  return outcome;
 }
 
 }  // namespace periflex

@@ -2,6 +2,7 @@
 // VTK snapshots and rendered frames / movies.
 #pragma once
 
+#include <exception>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,5 +48,14 @@ struct RunOptions {
 
 // Returns the process exit code (0 ok, 2 bad input, 3 numerical failure, 1 other).
 int run_command(const RunOptions& options);
+
+// How a run ended, for callers that report it their own way (the Python module).
+struct RunOutcome {
+  int exit_code = 0;
+  std::string out_dir;            // the folder the outputs went to (the default filled in)
+  std::exception_ptr failure;     // the error that stopped the run after it started, if any
+};
+// The same run. Bad input found before the run starts is thrown, as by run_command.
+RunOutcome run_and_report(const RunOptions& options);
 
 }  // namespace periflex

@@ -214,8 +214,7 @@ std::string collect(const fs::path& dir) {
 // returns how many failed. Ctrl-C or SIGTERM (cli/interrupt.h) is passed on to the runs under
 // way, which stop cleanly as a run does, and no further run starts.
 int run_locally(const SweepDef& sweep, const std::vector<SweepRun>& runs, const fs::path& out, int jobs,
-                bool quiet) {
-  const std::string program = current_executable();
+                bool quiet, const std::string& program) {
   ChildLimits limits;
   limits.timeout_seconds = sweep.timeout_seconds;
   limits.memory_bytes = sweep.memory_bytes;
@@ -252,8 +251,7 @@ int run_locally(const SweepDef& sweep, const std::vector<SweepRun>& runs, const 
 
 // The command lines for GNU parallel, and a Slurm array script that runs line N as task N.
 void write_jobs(const SweepDef& sweep, const std::vector<SweepRun>& runs, const fs::path& out,
-                const std::string& jobs_file) {
-  const std::string program = current_executable();
+                const std::string& jobs_file, const std::string& program) {
   std::ostringstream lines;
   for (const SweepRun& run : runs) {
     const std::vector<std::string> argv = run_argv(program, sweep, run, out / run.folder);
@@ -280,40 +278,7 @@ void write_jobs(const SweepDef& sweep, const std::vector<SweepRun>& runs, const 
 
 int sweep_command(const SweepOptions& options) {
   try {
-    if (!options.collect_dir.empty()) {
-      std::printf("%s\n", collect(options.collect_dir).c_str());
-      return kExitOk;
-    }
-    if (options.sweep_path.empty()) {
-      std::fprintf(stderr, "periflex sweep: give a sweep file, or --collect DIR\n");
-      return kExitBadInput;
-    }
-    const SweepDef sweep = load_sweep(options.sweep_path);
-    const std::vector<SweepRun> runs = expand_sweep(sweep);
-    const fs::path out = options.out_dir.empty() ? fs::path("out") / ("sweep-" + sweep.name) : fs::path(options.out_dir);
-    fs::create_directories(out);
-    write_plan(sweep, runs, out);
-    if (!options.jobs_file.empty()) {
-      write_jobs(sweep, runs, out, options.jobs_file);
-      std::printf("wrote %s (%zu runs: parallel --jobs N < %s)\nwrote %s (sbatch)\n", options.jobs_file.c_str(),
-                  runs.size(), options.jobs_file.c_str(), (out / "sweep.slurm").string().c_str());
-      std::printf("then: periflex sweep --collect %s\n", out.string().c_str());
-      return kExitOk;
-    }
-    const int jobs = options.jobs > 0 ? options.jobs : sweep.jobs;
-    if (!options.quiet) std::printf("sweep %s: %zu runs, %d at once\n", sweep.name.c_str(), runs.size(), jobs);
-    catch_interrupts();
-    const int failed = run_locally(sweep, runs, out, jobs, options.quiet);
-    std::printf("%s\n", collect(out).c_str());
-    if (const int signal_number = pending_interrupt()) {
-      std::fprintf(stderr,
-                   "periflex: sweep interrupted by %s: the runs under way stopped where they were (status "
-                   "'interrupted'), the rest did not start ('missing'); sweep.csv holds them all\n",
-                   interrupt_name(signal_number));
-      return interrupt_exit_code(signal_number);
-    }
-    if (failed > 0) std::printf("%d of %zu runs failed (their log.txt says why)\n", failed, runs.size());
-    return failed > 0 ? kExitOther : kExitOk;
+    return sweep_or_throw(options);
   } catch (const InputError& error) {
     std::fprintf(stderr, "periflex: error: %s\n", error.what());
     return kExitBadInput;
@@ -321,6 +286,44 @@ int sweep_command(const SweepOptions& options) {
     std::fprintf(stderr, "periflex: error: %s\n", error.what());
     return kExitOther;
   }
+}
+
+int sweep_or_throw(const SweepOptions& options) {
+  const std::string program = options.program.empty() ? current_executable() : options.program;
+  if (!options.collect_dir.empty()) {
+    std::printf("%s\n", collect(options.collect_dir).c_str());
+    return kExitOk;
+  }
+  if (options.sweep_path.empty()) {
+    std::fprintf(stderr, "periflex sweep: give a sweep file, or --collect DIR\n");
+    return kExitBadInput;
+  }
+  const SweepDef sweep = load_sweep(options.sweep_path);
+  const std::vector<SweepRun> runs = expand_sweep(sweep);
+  const fs::path out = options.out_dir.empty() ? fs::path("out") / ("sweep-" + sweep.name) : fs::path(options.out_dir);
+  fs::create_directories(out);
+  write_plan(sweep, runs, out);
+  if (!options.jobs_file.empty()) {
+    write_jobs(sweep, runs, out, options.jobs_file, program);
+    std::printf("wrote %s (%zu runs: parallel --jobs N < %s)\nwrote %s (sbatch)\n", options.jobs_file.c_str(),
+                runs.size(), options.jobs_file.c_str(), (out / "sweep.slurm").string().c_str());
+    std::printf("then: periflex sweep --collect %s\n", out.string().c_str());
+    return kExitOk;
+  }
+  const int jobs = options.jobs > 0 ? options.jobs : sweep.jobs;
+  if (!options.quiet) std::printf("sweep %s: %zu runs, %d at once\n", sweep.name.c_str(), runs.size(), jobs);
+  catch_interrupts();
+  const int failed = run_locally(sweep, runs, out, jobs, options.quiet, program);
+  std::printf("%s\n", collect(out).c_str());
+  if (const int signal_number = pending_interrupt()) {
+    std::fprintf(stderr,
+                 "periflex: sweep interrupted by %s: the runs under way stopped where they were (status "
+                 "'interrupted'), the rest did not start ('missing'); sweep.csv holds them all\n",
+                 interrupt_name(signal_number));
+    return interrupt_exit_code(signal_number);
+  }
+  if (failed > 0) std::printf("%d of %zu runs failed (their log.txt says why)\n", failed, runs.size());
+  return failed > 0 ? kExitOther : kExitOk;
 }
 
 }  // namespace periflex

@@ -17,9 +17,13 @@ struct SweepOptions {
   std::string jobs_file;    // write the command lines here (and sweep.slurm beside the runs) instead of running
   std::string collect_dir;  // gather the runs of this folder into sweep.csv
   bool quiet = false;
+  std::string program;      // the program each run starts (`PROGRAM run ...`); empty: this one
 };
 
 // Returns the exit code: 0 every run ok (or the files written), 2 bad input, 1 a run failed.
 int sweep_command(const SweepOptions& options);
+// The same, with bad input and other errors thrown (InputError, std::exception) rather than
+// printed: for callers that report them their own way (the Python module).
+int sweep_or_throw(const SweepOptions& options);
 
 }  // namespace periflex

@@ -140,15 +140,7 @@ void Recorder::Impl::draw_loop() {
                                                      : fit_camera(job.snapshot, options.width, options.height);
         have_camera = true;
       }
-      if (options.camera_mode == Mode::kGrow) {
-        const Bounds now = snapshot_bounds(job.snapshot);
-        const double aspect = double(options.width) / options.height;
-        const Vec2 half(0.5 * camera.view_height * aspect, 0.5 * camera.view_height);
-        Bounds view;
-        view.add(camera.center - half);
-        view.add(camera.center + half);
-        if (!now.empty() && !view.contains(now)) camera.fit(now.lo, now.hi, aspect);
-      }
+      if (options.camera_mode == Mode::kGrow) widen_to_show(camera, job.snapshot, options.width, options.height);
 
       // a free frame to draw into
       int f = 0;

@@ -6,7 +6,10 @@
 #include <pybind11/stl.h>
 
 #include "core/error.h"
+#include "core/resources.h"
 #include "python/py_arrays.h"
+#include "python/py_commands.h"
+#include "python/py_render.h"
 #include "python/py_simulation.h"
 #include "solve/simulation.h"
 
@@ -96,6 +99,11 @@ PYBIND11_MODULE(_periflex, m) {
   m.attr("NumericalError") = py::handle(numerical_error_type);
   py::register_exception_translator(translate_errors);
 
+  pycommands::bind(m);
+  m.def("_recorded_scene", &recorded_scene, py::arg("checkpoint_path"));
+  m.def("_program_resource_root", [] { return find_resource_root(); },
+        "Where the program finds shaders/, assets/ and scenes/ ($PERIFLEX_ROOT, then the source tree).");
+  m.def("render_available", &pyrender::available, "True when this build draws pictures (Simulation.render).");
   m.def("integrator_names", &integrator_names, "The integrators this build offers (solver.integrator).");
 
   py::class_<PySimulation>(m, "_Simulation", "The compiled simulation; periflex.Simulation wraps it.")
@@ -172,5 +180,24 @@ PYBIND11_MODULE(_periflex, m) {
            "Write the state to a checkpoint file (the format of `periflex run --checkpoint-every`).")
       .def("restore_checkpoint", &PySimulation::restore_checkpoint, py::arg("path"),
            "Put back the state of a checkpoint file written for this scene and overrides "
-           "(InputError naming the file otherwise).");
+           "(InputError naming the file otherwise).")
+      .def(
+          "_render",
+          [](PySimulation& s, int width, int height, const std::string& field, const std::string& deform,
+             const std::string& colormap, int samples, bool overlay, const std::vector<double>& camera,
+             const std::string& resource_root) {
+            PyRenderRequest r;
+            r.width = width;
+            r.height = height;
+            r.field = field;
+            r.deform = deform;
+            r.colormap = colormap;
+            r.samples = samples;
+            r.overlay = overlay;
+            r.camera = camera;
+            r.resource_root = resource_root;
+            return pyrender::render(s, r);
+          },
+          py::arg("width"), py::arg("height"), py::arg("field"), py::arg("deform"), py::arg("colormap"),
+          py::arg("samples"), py::arg("overlay"), py::arg("camera"), py::arg("resource_root"));
 }

@@ -12,10 +12,15 @@ namespace periflex::pyarrays {
 
 namespace {
 
-// A read-only array over memory `self` owns (the view keeps `self` alive).
+PySimulation& unwrap(py::object self) { return py::cast<PySimulation&>(self); }
+
+// A read-only array over memory the simulation owns; the view keeps that simulation alive (also
+// after set() has built the model again and the Python object holds another).
 py::array readonly_view(const double* data, long rows, long cols, py::object self) {
+  using Shared = std::shared_ptr<Simulation>;
+  py::capsule keeper(new Shared(unwrap(self).shared_sim()), [](void* p) { delete static_cast<Shared*>(p); });
   py::array out(py::dtype::of<double>(), {rows, cols},
-                {static_cast<long>(cols * sizeof(double)), static_cast<long>(sizeof(double))}, data, self);
+                {static_cast<long>(cols * sizeof(double)), static_cast<long>(sizeof(double))}, data, keeper);
   out.attr("setflags")(py::arg("write") = false);
   return out;
 }
@@ -37,8 +42,6 @@ long particle_offset(const Simulation& sim) {
                            std::to_string(sim.coordinates().size()) + ")");
   return offset;
 }
-
-PySimulation& unwrap(py::object self) { return py::cast<PySimulation&>(self); }
 
 }  // namespace
 
@@ -138,8 +141,9 @@ py::dict series_units(PySimulation& sim) {
 py::dict check_report(PySimulation& py_sim) {
   Simulation& sim = py_sim.sim();
   // as `periflex check`: initial conditions made consistent first (this finds redundant
-  // constraints); a failure there is raised as the program reports it
-  sim.initialize();
+  // constraints); a failure there is raised as the program reports it. Once: a simulation that
+  // has stepped keeps its state (the figures are the first initialisation's)
+  py_sim.initialize_once();
   const ModelInfo& m = sim.info();
   const SceneDef& scene = sim.scene();
   py::dict d;

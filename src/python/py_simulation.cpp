@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 
@@ -54,14 +55,49 @@ std::string read_text(const std::string& path) {
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
 }
 
+// The scene of `source` with `overrides`, checked as `periflex run` checks it.
+SceneDef load_checked(const SceneSource& source, const std::vector<std::string>& overrides,
+                      std::vector<std::string>& warnings) {
+  const SceneDef scene = source.path.empty() ? parse_scene(source.text, source.display_name, overrides)
+                                             : load_scene(source.path, overrides);
+  check_loaded_scene(scene, warnings);
+  return scene;
+}
+
+// "flex_body.NAME.material.KEY" for the constants of breaking a rebuild may change live.
+bool is_fracture_constant(const std::string& key) {
+  const std::string head = "flex_body.";
+  if (key.rfind(head, 0) != 0) return false;
+  for (const char* tail : {".material.fracture_energy", ".material.critical_stretch"}) {
+    const std::string t = tail;
+    if (key.size() > head.size() + t.size() && key.compare(key.size() - t.size(), t.size(), t) == 0) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 PySimulation::PySimulation(const SceneSource& source, const std::vector<std::string>& overrides)
     : source_(source), overrides_(overrides) {
-  const SceneDef scene = source.path.empty() ? parse_scene(source.text, source.display_name, overrides)
-                                             : load_scene(source.path, overrides);
-  check_loaded_scene(scene, scene_warnings_);
-  sim_ = std::make_unique<Simulation>(scene);
+  sim_ = std::make_shared<Simulation>(load_checked(source, overrides, scene_warnings_));
+}
+
+void PySimulation::rebuild_with(const std::string& override_text) {
+  std::vector<std::string> overrides = overrides_;
+  overrides.push_back(override_text);
+  std::vector<std::string> warnings;
+  auto next = std::make_shared<Simulation>(load_checked(source_, overrides, warnings));
+  // the state of now, whole (the integrator's cache too: the forces do not depend on the
+  // constants of breaking), under the live settings of now
+  initialize_once();
+  SimState state;
+  sim_->save_state(state);
+  next->apply(sim_->settings());
+  next->restore_state(state);
+  sim_ = std::move(next);
+  overrides_ = std::move(overrides);
+  scene_warnings_ = std::move(warnings);
+  snapshot_step_ = -1;
 }
 
 void PySimulation::refuse_when_busy(const char* what) const {
@@ -75,7 +111,18 @@ void PySimulation::step_interruptibly(long n, OneStep one_step) {
     std::atomic<bool>& busy;
     ~Idle() { busy = false; }
   } idle{busy_};
+  // stepping initialises first (Simulation::step)
+  initialized_ = true;
   using Clock = std::chrono::steady_clock;
+  // a call whose steps take less than kHoldGilSeconds keeps the interpreter: giving the GIL up
+  // and taking it back costs more than such a step (the pendulum's take 2 us), and no other
+  // thread waits longer than the interpreter's own switch interval (5 ms) makes it wait anyway
+  if (n <= kMaxHeldSteps && typical_step_seconds_ > 0.0 && typical_step_seconds_ * n < kHoldGilSeconds) {
+    bool finished = false;
+    for (long done = 0; done < n && !finished; ++done) finished = one_step();
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    return;
+  }
   const auto check_every = std::chrono::duration<double>(kSignalCheckSeconds);
   long done = 0;
   bool finished = false;
@@ -85,10 +132,12 @@ void PySimulation::step_interruptibly(long n, OneStep one_step) {
     {
       py::gil_scoped_release release;
       const auto start = Clock::now();
+      const long before = done;
       do {
         finished = one_step();
         ++done;
       } while (done < n && !finished && Clock::now() - start < check_every);
+      typical_step_seconds_ = std::chrono::duration<double>(Clock::now() - start).count() / double(done - before);
     }
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   }
@@ -115,6 +164,10 @@ void PySimulation::advance_to(double t) {
 
 void PySimulation::set(const std::string& key, const std::string& value) {
   refuse_when_busy("set");
+  if (is_fracture_constant(key)) {
+    rebuild_with(key + "=" + value);
+    return;
+  }
   LiveSettings settings = sim_->settings();
   const std::string name = live_key(key);
   const std::string problem = set_live_parameter(settings, name, value);
@@ -142,6 +195,7 @@ void PySimulation::restore_state(const uint8_t* bytes, size_t size) {
   } catch (const std::invalid_argument& e) {
     throw py::value_error(std::string("restore_state: ") + e.what());
   }
+  initialized_ = true;
   snapshot_step_ = -1;
 }
 
@@ -160,6 +214,36 @@ void PySimulation::write_checkpoint(const std::string& path) {
   SimState state;
   sim_->save_state_for_file(state);
   periflex::write_checkpoint(path, header, state);
+  record_scene_beside(path, header.scene_hash);
+}
+
+void PySimulation::record_scene_beside(const std::string& checkpoint_path, uint64_t hash) const {
+  if (source_.path.empty()) return;
+  const std::string dir = std::filesystem::absolute(checkpoint_path).parent_path().string();
+  try {
+    if (read_run_record(dir).scene_hash != hash) return;  // the folder's other scene keeps its record
+  } catch (const CheckpointError&) {
+    // no record yet (or none this program can read): this one is written
+  }
+  RunRecord record;
+  record.scene_path = std::filesystem::absolute(source_.path).lexically_normal().string();
+  record.overrides = overrides_;
+  record.scene_hash = hash;
+  record.program_version = PERIFLEX_VERSION;
+  write_run_record(dir, record);
+}
+
+std::pair<std::string, std::vector<std::string>> recorded_scene(const std::string& checkpoint_path) {
+  const std::string dir = std::filesystem::absolute(checkpoint_path).parent_path().string();
+  RunRecord record;
+  try {
+    record = read_run_record(dir);
+  } catch (const CheckpointError& e) {
+    throw InputError({checkpoint_path, 0, 0, ""},
+                     std::string("the checkpoint's folder records no scene (") + e.what() +
+                         "); give the scene: Simulation.from_checkpoint(path, scene, overrides)");
+  }
+  return {record.scene_path, record.scene_overrides()};
 }
 
 void PySimulation::restore_checkpoint(const std::string& path) {
@@ -179,6 +263,7 @@ void PySimulation::restore_checkpoint(const std::string& path) {
   if (header.scene_hash != scene_hash())
     throw refuse("written for another scene, or for this one with other overrides");
   sim_->restore_state(state);
+  initialized_ = true;
   snapshot_step_ = -1;
 }
 
@@ -190,6 +275,20 @@ const Snapshot& PySimulation::snapshot() {
     snapshot_time_ = sim_->time();
   }
   return snapshot_;
+}
+
+Snapshot PySimulation::picture_snapshot() {
+  refuse_when_busy("render");
+  initialize_once();
+  return snapshot();
+}
+
+void PySimulation::initialize_once() {
+  refuse_when_busy("initialize");
+  if (initialized_) return;
+  sim_->initialize();
+  initialized_ = true;
+  snapshot_step_ = -1;
 }
 
 }  // namespace periflex

@@ -91,4 +91,14 @@ Camera fit_camera(const Snapshot& snapshot, int width, int height, double margin
   return camera;
 }
 
+void widen_to_show(Camera& camera, const Snapshot& snapshot, int width, int height) {
+  const Bounds now = snapshot_bounds(snapshot);
+  const double aspect = double(width) / height;
+  const Vec2 half(0.5 * camera.view_height * aspect, 0.5 * camera.view_height);
+  Bounds view;
+  view.add(camera.center - half);
+  view.add(camera.center + half);
+  if (!now.empty() && !view.contains(now)) camera.fit(now.lo, now.hi, aspect);
+}
+
 }  // namespace periflex

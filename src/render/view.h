@@ -33,5 +33,8 @@ inline int default_samples(long particles) { return particles < kLargeSceneParti
 
 // A camera showing scene_bounds with a margin, for a viewport of width x height pixels.
 Camera fit_camera(const Snapshot& snapshot, int width, int height, double margin = 0.08);
+// Widens the camera (never narrows it) to everything drawn in the snapshot when some of it is
+// outside the view of a width x height picture: how a recording's view follows a scene.
+void widen_to_show(Camera& camera, const Snapshot& snapshot, int width, int height);
 
 }  // namespace periflex

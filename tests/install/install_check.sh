@@ -67,6 +67,11 @@ import periflex
 sim = periflex.Simulation('$scenes/pendulum.toml')
 sim.step(10)
 assert sim.steps == 10 and sim.body_poses.shape == (1, 3)
+# its files, its pictures and the program its sweeps start: those of the moved prefix
+assert str(periflex.scenes_folder()) == '$prefix/share/periflex/scenes', periflex.scenes_folder()
+assert periflex._commands._program() == '$prefix/bin/periflex', periflex._commands._program()
+if periflex.render_available():
+    assert sim.render(64, 48).shape == (48, 64, 3)
 print('python module:', periflex.__file__)" || fail "the installed Python module does not run"
 fi
 echo "PASS ($mode): $prefix"

@@ -16,6 +16,7 @@ struct RunOptions {
   std::optional<std::string> integrator;
   std::string out_dir;                  // default out/<scene-name>
   int threads = 0;                      // 0: all cores
+  std::string device = "cpu";           // --device: cpu | gpu (cli/device_option.h)
   bool quiet = false;
   long vtk_every = 0;                   // steps between VTK snapshots; 0: none
 

@@ -45,7 +45,7 @@ void main() {
     const double k = double(stiffness[b]);
     precise double s = len * l0 - 1.0LF;
     if (u_track == 1 && k > 0.0LF) top = max(top, s);
-    if (u_breaking == 1 && k > 0.0LF && !fixed_i && !fixed_particle(j) && s > u_s0) {
+    if (u_breaking == 1 && s > u_s0 && k > 0.0LF && !fixed_i && !fixed_particle(j)) {
       // this copy breaks here; the other copy, in row j, sees the same stretch and breaks too
       stiffness[b] = 0.0;
       broke = true;

@@ -3,10 +3,12 @@
 # machine with a GPU. From the project root:
 #   here, on a build tree:             bench/gpu_all.sh build
 #   on a GPU machine with the pack:    bash .device/run.sh bash bench/gpu_all.sh
-#     (the pack: ../shared/device/make-bundle.sh build build/tests/test_gpu; see docs/gpu.md)
+#     (the pack: ../shared/device/make-bundle.sh build; see docs/gpu.md)
 # Prints the machine and its GPU, the bond evaluations per second of the force pass on the GPU
-# and on the CPU (medians of 5), the GPU-against-CPU tests, and the default notched plate run to
-# its end on each path (wall-clock seconds).
+# and on the CPU (medians of 5), the GPU-against-CPU tests (from a build tree only: they read the
+# scenes of the source tree they were built in), and the default notched plate run to
+# its end on each path (wall-clock seconds). GPU_BENCH_FILTER picks benchmarks (a regex),
+# GPU_ALL_UNTIL ends the notched plate early (a quick check of the script).
 set -euo pipefail
 build=${1:-}
 out=${GPU_ALL_OUT:-gpu_all_results.txt}
@@ -19,7 +21,8 @@ program() {
 }
 periflex=$(program periflex)
 bench=$(program gpu_pd_bench)
-tests=$(program test_gpu)
+tests=""
+[[ -n "$build" && -x "$build/tests/test_gpu" ]] && tests="$build/tests/test_gpu"
 [[ -n "$periflex" && -n "$bench" ]] || { echo "periflex or gpu_pd_bench not found (build them, or run through the pack)"; exit 2; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -43,7 +46,8 @@ trap 'rm -rf "$work"' EXIT
   echo "== the default notched plate to its end, each path (wall-clock seconds)"
   for device in cpu gpu; do
     start=$(date +%s.%N)
-    if "$periflex" run scenes/notched_plate.toml --quiet --device "$device" --out "$work/$device" >"$work/$device.log" 2>&1; then
+    if "$periflex" run scenes/notched_plate.toml --quiet --device "$device" ${GPU_ALL_UNTIL:+--until "$GPU_ALL_UNTIL"} \
+      --out "$work/$device" >"$work/$device.log" 2>&1; then
       end=$(date +%s.%N)
       echo "$device: $(echo "$end - $start" | bc) s; $(tail -n 1 "$work/$device.log")"
     else

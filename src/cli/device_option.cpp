@@ -18,9 +18,9 @@ GpuBackendInstallation::GpuBackendInstallation() {
 
 GpuBackendInstallation::~GpuBackendInstallation() { install_bond_force_device({}); }
 
-void apply_device_option(const std::string& device, SceneDef& scene) {
+std::string apply_device_option(const std::string& device, SceneDef& scene) {
   scene.solver.device = device;
-  if (device != "gpu") return;
+  if (device != "gpu") return "";
   // the laws first: they need no context to be refused
   for (const FlexBodyDef& def : scene.flex_bodies) {
     if (def.material.model == PdMaterialDef::Model::kBondBased) continue;
@@ -31,7 +31,7 @@ void apply_device_option(const std::string& device, SceneDef& scene) {
   }
   // then the context: made here, before the model, and kept for the bodies' devices
   try {
-    make_bond_force_device();
+    return make_bond_force_device()->description();
   } catch (const std::exception& e) {
     throw InputError(flag_location("--device"),
                      std::string("no GPU compute here: ") + e.what() + " (leave out --device gpu to run on the CPU)");

@@ -21,7 +21,8 @@ class GpuBackendInstallation {
 };
 
 // Sets scene.solver.device from the flag's value; throws InputError naming --device when "gpu"
-// cannot run this scene here.
-void apply_device_option(const std::string& device, SceneDef& scene);
+// cannot run this scene here. Returns the device's description ("OpenGL compute fp64; GL: ...;
+// renderer: ..."), empty for the CPU.
+std::string apply_device_option(const std::string& device, SceneDef& scene);
 
 }  // namespace periflex

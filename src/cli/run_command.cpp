@@ -165,6 +165,8 @@ int run_command(const RunOptions& requested) {
   summary.scene_path = scene.path;
   summary.overrides = options.overrides;
   summary.integrator = scene.solver.integrator;
+  summary.device = scene.solver.device;
+  summary.device_description = options.device_description;
   summary.dt = scene.solver.dt;
   write_summary(summary_path, info, summary);
 

@@ -78,6 +78,11 @@ TEST(DeviceOption, NotchedPlateOnTheGpuWritesTheCpuRows) {
   ASSERT_EQ(cpu.exit_code, 0) << cpu.output;
   const ProgramResult gpu = run_periflex("run " + common + " --device gpu --out " + (dir / "gpu").string());
   ASSERT_EQ(gpu.exit_code, 0) << gpu.output;
+  // summary.json says where the forces ran, and on what
+  const std::string cpu_summary = read_text(dir / "cpu" / "summary.json"), gpu_summary = read_text(dir / "gpu" / "summary.json");
+  EXPECT_NE(cpu_summary.find("\"device\": \"cpu\""), std::string::npos) << cpu_summary;
+  EXPECT_NE(gpu_summary.find("\"device\": \"gpu\""), std::string::npos) << gpu_summary;
+  EXPECT_NE(gpu_summary.find("renderer: "), std::string::npos) << gpu_summary;
   const Series a = read_series(dir / "cpu" / "series.csv"), b = read_series(dir / "gpu" / "series.csv");
   ASSERT_EQ(a.columns, b.columns);
   ASSERT_EQ(a.rows.size(), b.rows.size());

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "cli/check_command.h"
+#include "cli/device_option.h"
 #include "cli/gui_command.h"
 #include "cli/run_command.h"
 #include "cli/scene_setup.h"
@@ -138,6 +139,7 @@ void add_render_options(CLI::App* command, RunOptions& o) {
 }
 
 int run_main(int argc, char** argv) {
+  const GpuBackendInstallation gpu_backend;
   CLI::App app{"periflex: flexible multibody dynamics with peridynamic fracture, in 2D"};
   // the version, and where the program found its shaders, colour maps and scenes
   app.set_version_flag("--version", std::string("periflex ") + PERIFLEX_VERSION + "\nfiles: " + find_resource_root());
@@ -153,6 +155,8 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("--out", run.out_dir, "Output directory (default out/<scene-name>)");
   run_cmd->add_option("--threads", run.threads, "Threads for the force evaluation (default: all cores)")
       ->check(CLI::Range(0, 1024));
+  run_cmd->add_option("--device", run.device, "Where the flexible bodies' bond forces run: cpu (default) or gpu")
+      ->check(CLI::IsMember({"cpu", "gpu"}));
   run_cmd->add_flag("--quiet", run.quiet, "No progress bar; only the final line");
   run_cmd->add_option("--vtk-every", run.vtk_every, "Write VTK snapshots (particles and rigid bodies, for ParaView) every N steps")
       ->check(kCount);

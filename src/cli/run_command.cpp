@@ -172,6 +172,8 @@ RunOutcome run_and_report(const RunOptions& requested) {
   summary.scene_path = scene.path;
   summary.overrides = options.overrides;
   summary.integrator = scene.solver.integrator;
+  summary.device = scene.solver.device;
+  summary.device_description = options.device_description;
   summary.dt = scene.solver.dt;
   write_summary(summary_path, info, summary);
 

@@ -10,6 +10,7 @@
 #include <filesystem>
 
 #include "cli/camera_option.h"
+#include "cli/device_option.h"
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "core/resources.h"
@@ -180,6 +181,7 @@ SceneDef load_run_scene(RunOptions& options) {
         plan.frame_every_given ? flag_location("--frame-every") : scene.locate("limits.max_frames");
   }
   check_scene_budget(scene, plan);
+  options.device_description = apply_device_option(options.device, scene);
   // the columns of this run's series.csv follow from the scene: no model is built for them
   if (!options.plot.empty()) plot_columns_checked(options, series_columns(scene));
   if (options.snapshot_at && *options.snapshot_at > scene.solver.end_time)

@@ -44,14 +44,15 @@ bool has_extension(const char* list, const char* name) {
 }
 
 // eglTerminate would destroy every context of a display, so displays are initialised once per
-// process and counted; the last user terminates.
+// process and counted; the last user terminates. Never destroyed: a context held by a static
+// object (a shared compute context) may close its display after the other statics are gone.
 std::mutex& display_mutex() {
-  static std::mutex m;
-  return m;
+  static auto* m = new std::mutex;
+  return *m;
 }
 std::map<EGLDisplay, int>& display_users() {
-  static std::map<EGLDisplay, int> users;
-  return users;
+  static auto* users = new std::map<EGLDisplay, int>;
+  return *users;
 }
 
 // Opens and initialises a display, trying the platforms in order of preference.
@@ -110,7 +111,7 @@ void close_display(EGLDisplay d) {
 
 }  // namespace
 
-EglContext::EglContext() {
+EglContext::EglContext(int major, int minor) {
   std::string platform, tried;
   EGLDisplay display = open_display(platform, tried);
   if (display == EGL_NO_DISPLAY)
@@ -136,11 +137,12 @@ EglContext::EglContext() {
   if (!eglChooseConfig(display, config_attribs, &config, 1, &configs) || configs < 1)
     fail("eglChooseConfig (no OpenGL config)");
 
-  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+  const EGLint context_attribs[] = {EGL_CONTEXT_MAJOR_VERSION, major, EGL_CONTEXT_MINOR_VERSION, minor,
                                     EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                     EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attribs);
-  if (context == EGL_NO_CONTEXT) fail("eglCreateContext (OpenGL 3.3 core)");
+  if (context == EGL_NO_CONTEXT)
+    fail("eglCreateContext (OpenGL " + std::to_string(major) + "." + std::to_string(minor) + " core)");
   context_ = context;
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     eglDestroyContext(display, context);
@@ -167,6 +169,27 @@ void EglContext::make_current() {
   if (!eglMakeCurrent(static_cast<EGLDisplay>(display_), EGL_NO_SURFACE, EGL_NO_SURFACE,
                       static_cast<EGLContext>(context_)))
     throw std::runtime_error("EGL: eglMakeCurrent failed: " + egl_error_name(eglGetError()));
+}
+
+EglContext::Scope::Scope(EglContext& context) {
+  const EGLContext mine = static_cast<EGLContext>(context.context_);
+  context_ = eglGetCurrentContext();
+  if (context_ == mine) return;
+  display_ = eglGetCurrentDisplay();
+  draw_ = eglGetCurrentSurface(EGL_DRAW);
+  read_ = eglGetCurrentSurface(EGL_READ);
+  context.make_current();
+  switched_ = true;
+}
+
+EglContext::Scope::~Scope() {
+  if (!switched_) return;
+  // the thread's own context back, or none (so that another thread may take this one next)
+  if (context_ != EGL_NO_CONTEXT)
+    eglMakeCurrent(static_cast<EGLDisplay>(display_), static_cast<EGLSurface>(draw_), static_cast<EGLSurface>(read_),
+                   static_cast<EGLContext>(context_));
+  else
+    eglMakeCurrent(eglGetCurrentDisplay(), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
 }
 
 void EglContext::release() {

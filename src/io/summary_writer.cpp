@@ -23,6 +23,8 @@ void write_summary(const std::string& path, const ModelInfo& info, const RunSumm
   j["scene_path"] = run.scene_path;
   j["set"] = run.overrides;
   j["integrator"] = run.integrator;
+  j["device"] = run.device;
+  j["device_description"] = run.device_description.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.device_description);
   j["dt"] = finite_or_null(run.dt);
   j["steps"] = run.steps;
   j["first_step"] = run.first_step;

@@ -1,9 +1,25 @@
 // The flexible part of the model: peridynamic bodies (their particles appended to q after the
 // rigid coordinates), their imposed motions, particle probes and the rigid-flexible joints.
 #include "core/error.h"
+#include "pd/bond_force_device.h"
 #include "model/system_model.h"
 
 namespace periflex {
+
+namespace {
+
+// A body's bonds on the GPU: refused (InputError at the body) when its law cannot run there or no
+// device can be made here, naming what is missing.
+void attach_bond_force_device(const FlexBodyDef& def, PdBody& flex) {
+  try {
+    flex.use_bond_force_device(make_bond_force_device());
+  } catch (const std::exception& e) {
+    throw InputError(def.where, std::string("solver.device = \"gpu\": ") + e.what() +
+                                    "; run it on the CPU (--device cpu)");
+  }
+}
+
+}  // namespace
 
 void build_flexible_part(const SceneDef& scene, SystemModel& m) {
   // each flexible body takes the next contiguous slice of q
@@ -14,6 +30,8 @@ void build_flexible_part(const SceneDef& scene, SystemModel& m) {
     if (m.flex_index(def.name) >= 0) throw InputError(def.where, "two flexible bodies are named '" + def.name + "'");
     const int offset = static_cast<int>(m.q0.size());
     auto flex = PdBody::build(def, offset);
+    // the bond forces on the device the solver names (pd/bond_force_device.h)
+    if (scene.solver.device == "gpu") attach_bond_force_device(def, *flex);
     const int n = 2 * flex->particle_count();
     const auto& reference = flex->reference_positions();
     const auto velocities = flex->initial_velocities();

@@ -68,7 +68,9 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
   // with fracture on the force loop also sees the stretch: an evaluation that breaks bonds leaves
   // out those past s0; one that holds every bond leaves the row maxima for update_fracture and
   // copies the positions it saw, chunk by chunk, so update_fracture knows they are its own.
-  if (m.breaks_in_evaluation()) {
+  if (m.device) {
+    add_device_bond_forces(m, e, t);
+  } else if (m.breaks_in_evaluation()) {
     m.stretch_cache_valid = false;
     double energy = 0.0;
     const double half_kick = t == m.step_end ? m.half_kick : 0.0;

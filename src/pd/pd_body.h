@@ -22,6 +22,8 @@
 
 namespace periflex {
 
+class BondForceDevice;
+
 // A particle coordinate whose motion is imposed (prescribed displacement or velocity BC).
 struct PrescribedCoordinate {
   int coordinate = 0;      // global index into q
@@ -103,6 +105,13 @@ class PdBody : public ForceElement {
   // booked for it is its strain energy there less the work it would have done over the half-kick.
   void set_step_end(double t_end, double half_kick);
   bool fracture_enabled() const;
+
+  // Runs the bond forces (damping and the in-evaluation break test included) on `device` from now
+  // on, the bonds uploaded to it here (bond_force_device.h). Only the bond-based law runs on a
+  // device: throws std::invalid_argument naming the body and its law otherwise.
+  void use_bond_force_device(std::unique_ptr<BondForceDevice> device);
+  // The device the bond forces run on; null: the CPU loops (the default).
+  const BondForceDevice* bond_force_device() const;
 
   // The broken bonds and the law's own fields (weighted volumes, bond histories), for saving a
   // state; a restore heals the bonds broken since (from BondStore::broken_stiffness) and breaks

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/time_function.h"
+#include "pd/bond_force_device.h"
 #include "pd/bond_store.h"
 #include "pd/material_law.h"
 #include "pd/particle_grid.h"
@@ -63,9 +64,20 @@ struct PdBody::Impl {
   bool breaks_in_evaluation() const {
     return tracks_stretch() && law->breaks_in_evaluation() && break_timing == PdBody::BreakTiming::kInEvaluation;
   }
+  // where the bond forces run when not on the CPU (null: CPU); told of every change to the bonds
+  // made outside its evaluations
+  std::unique_ptr<BondForceDevice> device;
+  void bonds_changed_on_host() {
+    if (device) device->bonds_changed();
+  }
+
   const uint8_t* no_fail_flags() const { return def.no_fail_regions.empty() ? nullptr : no_fail.data(); }
   const double* pos(const Eigen::VectorXd& q) const { return q.data() + offset; }
   int n() const { return grid.size(); }
 };
+
+// The bond forces of the body on its device (pd_body_device.cpp): as the law's add_forces or
+// add_forces_breaking for the three cases PdBody::add_forces distinguishes.
+void add_device_bond_forces(PdBody::Impl& m, const LawEvaluation& e, double t);
 
 }  // namespace periflex

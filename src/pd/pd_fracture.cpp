@@ -33,6 +33,7 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
   m.stretch_cache_valid = false;
   const BreakResult broke =
       m.law->break_bonds(m.bonds, m.pos(q), m.no_fail_flags(), cached ? m.stretch_cache_most.data() : nullptr);
+  if (broke.pairs > 0) m.bonds_changed_on_host();
   m.broken_pairs += broke.pairs;
   update.bonds_broken += broke.pairs;
   update.energy_released += broke.energy;
@@ -72,6 +73,7 @@ FractureUpdate PdBody::cut_bonds(const Eigen::VectorXd& q, const std::vector<dou
   }
   if (update.bonds_broken == 0) return update;
   m.law->bonds_cut(m.bonds, touched);
+  m.bonds_changed_on_host();
   m.stretch_cache_valid = false;
   m.broken_pairs += update.bonds_broken;
   update.energy_released = before - potential_energy(q);
@@ -142,6 +144,7 @@ void PdBody::restore_state(const FlexState& in) {
   m.pending_energy = in.pending_energy;
   m.law->restore(in);
   m.stretch_cache_valid = false;
+  m.bonds_changed_on_host();
 }
 
 }  // namespace periflex

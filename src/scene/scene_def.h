@@ -232,6 +232,8 @@ struct SolverDef {
   bool allow_unstable = false;
   int threads = 0;                 // 0: all cores
   double hht_alpha = -0.1;         // "hht": numerical damping alpha in [-1/3, 0] (0: trapezoidal rule)
+  // where the flexible bodies' bond forces run: "cpu", or "gpu" (set by --device; docs/gpu.md)
+  std::string device = "cpu";
 };
 
 // ---------------------------------------------------------------------------

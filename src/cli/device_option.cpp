@@ -1,0 +1,41 @@
+#include "cli/device_option.h"
+
+#include "cli/scene_setup.h"
+#include "core/error.h"
+#include "core/resources.h"
+#include "pd/bond_force_device.h"
+#ifdef PERIFLEX_WITH_GPU
+#include "gpu/gl_bond_force_device.h"
+#endif
+
+namespace periflex {
+
+GpuBackendInstallation::GpuBackendInstallation() {
+#ifdef PERIFLEX_WITH_GPU
+  install_bond_force_device(gl_bond_force_device_factory(find_resource_root()));
+#endif
+}
+
+GpuBackendInstallation::~GpuBackendInstallation() { install_bond_force_device({}); }
+
+std::string apply_device_option(const std::string& device, SceneDef& scene) {
+  scene.solver.device = device;
+  if (device != "gpu") return "";
+  // the laws first: they need no context to be refused
+  for (const FlexBodyDef& def : scene.flex_bodies) {
+    if (def.material.model == PdMaterialDef::Model::kBondBased) continue;
+    throw InputError(flag_location("--device"),
+                     "flexible body '" + def.name +
+                         "' has a law that runs only on the CPU; only material.model = \"bond_based\" runs on the "
+                         "GPU (leave out --device gpu)");
+  }
+  // then the context: made here, before the model, and kept for the bodies' devices
+  try {
+    return make_bond_force_device()->description();
+  } catch (const std::exception& e) {
+    throw InputError(flag_location("--device"),
+                     std::string("no GPU compute here: ") + e.what() + " (leave out --device gpu to run on the CPU)");
+  }
+}
+
+}  // namespace periflex

@@ -1,0 +1,43 @@
+#include "pd/bond_force_device.h"
+
+#include <mutex>
+#include <stdexcept>
+#include <utility>
+
+namespace periflex {
+
+namespace {
+
+// the one factory of the process, set by the program before any model is built
+std::mutex& factory_mutex() {
+  static std::mutex m;
+  return m;
+}
+BondForceDeviceFactory& installed_factory() {
+  static BondForceDeviceFactory factory;
+  return factory;
+}
+
+}  // namespace
+
+void install_bond_force_device(BondForceDeviceFactory factory) {
+  std::lock_guard<std::mutex> lock(factory_mutex());
+  installed_factory() = std::move(factory);
+}
+
+bool bond_force_device_installed() {
+  std::lock_guard<std::mutex> lock(factory_mutex());
+  return static_cast<bool>(installed_factory());
+}
+
+std::unique_ptr<BondForceDevice> make_bond_force_device() {
+  BondForceDeviceFactory factory;
+  {
+    std::lock_guard<std::mutex> lock(factory_mutex());
+    factory = installed_factory();
+  }
+  if (!factory) throw std::runtime_error("this program was built without a GPU backend (no OpenGL compute)");
+  return factory();
+}
+
+}  // namespace periflex

@@ -1,0 +1,196 @@
+// The GPU bond forces (gpu/gl_bond_force_device.h) against the CPU loops of the same body: forces
+// of every shipped bond-based scene's body, the bonds an evaluation breaks, the row maxima of the
+// break pass after the step, and the bonds a short notched-plate run breaks. Run under whatever
+// OpenGL the machine has (Mesa llvmpipe in CI); skipped, saying why, where no OpenGL 4.3 compute
+// context with fp64 can be made.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/resources.h"
+#include "gpu/gl_bond_force_device.h"
+#include "pd/pd_body.h"
+#include "scene/scene_loader.h"
+#include "solve/sim_state.h"
+#include "solve/simulation.h"
+
+namespace periflex::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The compute context every test here shares; null, with why in `reason`, where none can be made.
+std::shared_ptr<GlComputeContext> compute_context(std::string& reason) {
+  static std::shared_ptr<GlComputeContext> context;
+  static std::string why;
+  static bool tried = false;
+  if (!tried) {
+    tried = true;
+    try {
+      context = std::make_shared<GlComputeContext>(find_resource_root());
+    } catch (const std::exception& e) {
+      why = e.what();
+    }
+  }
+  reason = why;
+  return context;
+}
+
+#define REQUIRE_COMPUTE_CONTEXT(context)                                                       \
+  std::string why_not;                                                                         \
+  auto context = compute_context(why_not);                                                     \
+  if (!context) GTEST_SKIP() << "no OpenGL compute context with fp64 here: " << why_not
+
+// The largest magnitude of v.
+double max_abs(const Eigen::VectorXd& v) { return v.size() ? v.cwiseAbs().maxCoeff() : 0.0; }
+
+// A smooth displacement and velocity field over the body, so that bonds stretch by up to `strain`
+// and stretch at up to `rate` per second along both axes (cosines of the position over the
+// body's extent): forces and damping are well above round-off everywhere.
+void displaced_state(const PdBody& body, double strain, double rate, Eigen::VectorXd& q, Eigen::VectorXd& qd) {
+  const std::vector<double>& x = body.reference_positions();
+  const int n = body.particle_count();
+  double lo_x = x[0], hi_x = x[0], lo_y = x[1], hi_y = x[1];
+  for (int i = 0; i < n; ++i) {
+    lo_x = std::min(lo_x, x[2 * i]), hi_x = std::max(hi_x, x[2 * i]);
+    lo_y = std::min(lo_y, x[2 * i + 1]), hi_y = std::max(hi_y, x[2 * i + 1]);
+  }
+  const double size = std::max({hi_x - lo_x, hi_y - lo_y, body.grid_spacing()});
+  const double wave = 2.0 * std::numbers::pi / size;  // strain = amplitude * wave
+  q.resize(2 * n);
+  qd.resize(2 * n);
+  for (int i = 0; i < n; ++i) {
+    const double px = x[2 * i] - lo_x, py = x[2 * i + 1] - lo_y;
+    q[2 * i] = x[2 * i] + strain / wave * std::sin(wave * px) * (1.0 + 0.3 * std::cos(wave * py));
+    q[2 * i + 1] = x[2 * i + 1] + 0.5 * strain / wave * std::sin(wave * py + 0.7);
+    qd[2 * i] = rate / wave * std::cos(1.3 * wave * py);
+    qd[2 * i + 1] = rate / wave * std::sin(0.9 * wave * px);
+  }
+}
+
+// A body of `def` on the CPU and the same on the GPU.
+struct BodyPair {
+  std::unique_ptr<PdBody> cpu, gpu;
+};
+BodyPair build_pair(const FlexBodyDef& def, const std::shared_ptr<GlComputeContext>& context) {
+  BodyPair pair{PdBody::build(def, 0), PdBody::build(def, 0)};
+  pair.gpu->use_bond_force_device(std::make_unique<GlBondForceDevice>(context));
+  return pair;
+}
+
+// Adds both bodies' forces at (q, qd, t = 0) and compares them: within 1e-12 of the largest force.
+// Why 1e-12: the CPU sums a row's bonds in vector lanes, the GPU one after another, each a sum of
+// at most a few dozen terms rounded to 1.1e-16 each, so they differ by some 1e-15 of the row's
+// largest term; 1e-12 leaves a margin of hundreds and still catches any term wrong or missing.
+void expect_same_forces(BodyPair& pair, const Eigen::VectorXd& q, const Eigen::VectorXd& qd, const std::string& what) {
+  Eigen::VectorXd cpu = Eigen::VectorXd::Zero(q.size()), gpu = Eigen::VectorXd::Zero(q.size());
+  pair.cpu->add_forces(q, qd, 0.0, cpu);
+  pair.gpu->add_forces(q, qd, 0.0, gpu);
+  const double scale = max_abs(cpu);
+  ASSERT_GT(scale, 0.0) << what;
+  EXPECT_LE(max_abs(gpu - cpu), 1e-12 * scale) << what << ": largest force " << scale;
+  // the same bonds broken in the evaluation, with the same energy booked for them
+  EXPECT_EQ(pair.gpu->broken_bond_count(), pair.cpu->broken_bond_count()) << what;
+  EXPECT_TRUE(pair.gpu->bonds().broken == pair.cpu->bonds().broken) << what;
+  const FractureUpdate cpu_breaks = pair.cpu->take_evaluation_breaks(), gpu_breaks = pair.gpu->take_evaluation_breaks();
+  EXPECT_EQ(gpu_breaks.bonds_broken, cpu_breaks.bonds_broken) << what;
+  EXPECT_EQ(gpu_breaks.energy_released, cpu_breaks.energy_released) << what;
+}
+
+// Every flexible body of every shipped scene whose law is bond-based, at a displaced state where
+// bonds stretch up to twice their critical stretch (so that the evaluation breaks some), without
+// and then with bond damping.
+TEST(GlBondForceDevice, ForcesEqualTheCpuLoopsOnEveryShippedBondBasedBody) {
+  REQUIRE_COMPUTE_CONTEXT(context);
+  int bodies = 0, breaking = 0;
+  for (const auto& entry : fs::directory_iterator(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes")) {
+    if (entry.path().extension() != ".toml") continue;
+    const SceneDef scene = load_scene(entry.path().string());
+    for (const FlexBodyDef& def : scene.flex_bodies) {
+      if (def.material.model != PdMaterialDef::Model::kBondBased) continue;
+      const std::string what = entry.path().filename().string() + " body " + def.name;
+      BodyPair pair = build_pair(def, context);
+      ASSERT_NE(pair.gpu->bond_force_device(), nullptr);
+      const double s0 = pair.cpu->critical_stretch();
+      const double strain = std::isfinite(s0) ? 2.0 * s0 : 1e-3;
+      Eigen::VectorXd q, qd;
+      displaced_state(*pair.cpu, strain, 10.0, q, qd);
+      pair.cpu->set_bond_damping(0.0);
+      pair.gpu->set_bond_damping(0.0);
+      expect_same_forces(pair, q, qd, what + ", elastic");
+      // eta / E = 1e-4 s at a strain rate of 10 /s: damping as large as the elastic part
+      const double eta = 1e-4 * def.material.youngs_modulus;
+      pair.cpu->set_bond_damping(eta);
+      pair.gpu->set_bond_damping(eta);
+      displaced_state(*pair.cpu, 1.1 * strain, 10.0, q, qd);
+      expect_same_forces(pair, q, qd, what + ", damped");
+      ++bodies;
+      if (pair.cpu->broken_bond_count() > 0) ++breaking;
+    }
+  }
+  // the shipped scenes hold a dozen such bodies, most of them breakable
+  EXPECT_GE(bodies, 10);
+  EXPECT_GE(breaking, 5);
+}
+
+// Bonds that break after the step (the timing of integrators with trial stages): the GPU's row
+// maxima feed the break pass at the same positions, which breaks the same bonds.
+TEST(GlBondForceDevice, RowMaximaGiveTheSameBreaksAfterTheStep) {
+  REQUIRE_COMPUTE_CONTEXT(context);
+  const SceneDef scene = load_scene(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/notched_plate.toml");
+  BodyPair pair = build_pair(scene.flex_bodies.at(0), context);
+  pair.cpu->set_break_timing(PdBody::BreakTiming::kAfterStep);
+  pair.gpu->set_break_timing(PdBody::BreakTiming::kAfterStep);
+  Eigen::VectorXd q, qd;
+  displaced_state(*pair.cpu, 1.5 * pair.cpu->critical_stretch(), 10.0, q, qd);
+  expect_same_forces(pair, q, qd, "notched plate, every bond held");
+  EXPECT_EQ(pair.cpu->broken_bond_count(), 0);
+  const FractureUpdate cpu = pair.cpu->update_fracture(q), gpu = pair.gpu->update_fracture(q);
+  EXPECT_GT(cpu.bonds_broken, 0);
+  EXPECT_EQ(gpu.bonds_broken, cpu.bonds_broken);
+  EXPECT_EQ(gpu.energy_released, cpu.energy_released);
+  EXPECT_TRUE(pair.gpu->bonds().broken == pair.cpu->bonds().broken);
+  // the breaks made on the host reach the GPU's copy: the next forces leave them out alike
+  expect_same_forces(pair, q, qd, "notched plate, after the break pass");
+}
+
+// The notched plate torn by its grips, 300 steps on each path (its fracture energy lowered a
+// hundredfold so that the crack starts within them): the same bonds broken, step by step the same
+// count, and positions that agree to round-off grown over the run.
+TEST(GlBondForceDevice, NotchedPlateBreaksTheSameBondsOnBothPaths) {
+  REQUIRE_COMPUTE_CONTEXT(context);
+  install_bond_force_device(gl_bond_force_device_factory(find_resource_root()));
+  SceneDef scene = load_scene(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/notched_plate.toml",
+                              {"flex_body.plate.material.fracture_energy=3"});
+  Simulation cpu(scene);
+  scene.solver.device = "gpu";
+  Simulation gpu(scene);
+  cpu.initialize();
+  gpu.initialize();
+  const Eigen::VectorXd start = cpu.coordinates();
+  long broken = 0;
+  SimState cpu_state, gpu_state;
+  for (int step = 1; step <= 300; ++step) {
+    cpu.step();
+    gpu.step();
+    ASSERT_EQ(gpu.sample().broken_bonds, cpu.sample().broken_bonds) << "step " << step;
+    broken = cpu.sample().broken_bonds;
+  }
+  cpu.save_state(cpu_state);
+  gpu.save_state(gpu_state);
+  ASSERT_EQ(gpu_state.flex.size(), 1u);
+  EXPECT_TRUE(gpu_state.flex[0].broken_bits == cpu_state.flex[0].broken_bits);
+  EXPECT_GT(broken, 20) << "the crack did not start within the run";
+  // positions: the runs differ only by the order of each row's sum, grown over 300 steps
+  const double travel = max_abs(cpu.coordinates() - start);
+  EXPECT_LE(max_abs(gpu.coordinates() - cpu.coordinates()), 1e-9 * travel);
+  install_bond_force_device({});
+}
+
+}  // namespace
+}  // namespace periflex::testing

@@ -18,17 +18,17 @@ namespace {
   throw InputError(SourceLocation{path, 0, 0, "shape.file"}, message);
 }
 
-// What a pixel stands for.
+// What a grid cell stands for.
 enum class PixelKind { kVoid, kMaterial, kNoFail };
 
-PixelKind classify(const unsigned char* rgba, double threshold) {
-  const int r = rgba[0], g = rgba[1], b = rgba[2], a = rgba[3];
-  if (a < 128) return PixelKind::kVoid;  // transparent: no material
-  // a clear red (the no-fail colour) before the darkness test
-  if (r >= 150 && g < 100 && b < 100) return PixelKind::kNoFail;
-  const double luminance = (0.2126 * r + 0.7152 * g + 0.0722 * b) / 255.0;
-  return luminance < threshold ? PixelKind::kMaterial : PixelKind::kVoid;
+// Relative luminance of a pixel; a transparent pixel counts as white (no material).
+double luminance(const unsigned char* rgba) {
+  if (rgba[3] < 128) return 1.0;
+  return (0.2126 * rgba[0] + 0.7152 * rgba[1] + 0.0722 * rgba[2]) / 255.0;
 }
+
+// A clear red pixel: the no-fail colour.
+bool is_red(const unsigned char* rgba) { return rgba[3] >= 128 && rgba[0] >= 150 && rgba[1] < 100 && rgba[2] < 100; }
 
 }  // namespace
 
@@ -53,11 +53,24 @@ ParticleCloud read_image_shape(const std::string& path, const ImageShapeOptions&
   const GridFrame frame = grid_frame(box, options.dx);
   const double left = box.center.x() - 0.5 * box.width, top = box.center.y() + 0.5 * box.height;
 
-  // the pixel under each cell of the box (nearest), visited row by row from the bottom
+  // the picture at each cell centre of the box, visited row by row from the bottom: the
+  // luminance interpolated between the four nearest pixel centres (bilinear), so that a cell
+  // centre on a pixel boundary weighs both sides alike and a symmetric drawing gives a symmetric
+  // body; red (no-fail) where the pixel under the centre is red
+  const auto pixel = [&](long u, long v) {
+    u = std::clamp(u, 0L, static_cast<long>(w) - 1);
+    v = std::clamp(v, 0L, static_cast<long>(h) - 1);
+    return pixels.get() + 4 * (v * static_cast<long>(w) + u);
+  };
   auto kind_at = [&](const Vec2& p) {
-    const long u = std::clamp(static_cast<long>(std::floor((p.x() - left) / box.width * w)), 0L, static_cast<long>(w) - 1);
-    const long v = std::clamp(static_cast<long>(std::floor((top - p.y()) / box.height * h)), 0L, static_cast<long>(h) - 1);
-    return classify(pixels.get() + 4 * (v * static_cast<long>(w) + u), options.threshold);
+    const double u = (p.x() - left) / box.width * w - 0.5, v = (top - p.y()) / box.height * h - 0.5;
+    const double u0 = std::floor(u), v0 = std::floor(v), fu = u - u0, fv = v - v0;
+    const long iu = static_cast<long>(u0), iv = static_cast<long>(v0);
+    const double lum = (1 - fv) * ((1 - fu) * luminance(pixel(iu, iv)) + fu * luminance(pixel(iu + 1, iv))) +
+                       fv * ((1 - fu) * luminance(pixel(iu, iv + 1)) + fu * luminance(pixel(iu + 1, iv + 1)));
+    if (!(lum < options.threshold)) return PixelKind::kVoid;
+    return is_red(pixel(static_cast<long>(std::floor(u + 0.5)), static_cast<long>(std::floor(v + 0.5)))) ? PixelKind::kNoFail
+                                                                                                          : PixelKind::kMaterial;
   };
   auto visit = [&](auto&& on_particle) {
     scan_grid(box, {}, frame, {}, [&](long j, long begin, long end) {

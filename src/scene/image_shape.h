@@ -1,7 +1,7 @@
 // A specimen drawn in any paint program: the picture, stretched over a rectangle of the scene,
-// is sampled at the body's grid spacing; a grid cell whose pixel is darker than a threshold is
-// material. Red pixels (material too) mark particles whose bonds never break. PNG, BMP, JPEG
-// and the other formats stb_image reads.
+// is sampled at the body's grid spacing; a grid cell whose centre is darker than a threshold (the
+// luminance interpolated between the four nearest pixels) is material. Red pixels (material too)
+// mark particles whose bonds never break. PNG, BMP, JPEG and the other formats stb_image reads.
 #pragma once
 
 #include <string>

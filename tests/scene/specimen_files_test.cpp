@@ -58,12 +58,19 @@ struct PlateRun {
   ParticleCloud particles;
 };
 
+// The shipped scene with its shape and holes lines replaced by `shape` (empty: as shipped).
 PlateRun run_plate(const std::string& name, const std::string& shape) {
   const auto dir = testing::fresh_directory("specimen_plate_" + name);
-  std::string args = "run " + testing::scene("plate_with_hole.toml") + " --until 4e-4 --quiet --out " +
-                     (dir / "out").string() + " --points-out " + (dir / "points.csv").string();
-  if (!shape.empty()) args += " --set 'flex_body.plate.shape=" + shape + "' --set 'flex_body.plate.holes=[]'";
-  const auto result = run_periflex(args);
+  std::string scene = read_text(testing::scene("plate_with_hole.toml"));
+  if (!shape.empty()) {
+    const size_t at = scene.find("\nshape = "), holes = scene.find("\nholes = ");
+    EXPECT_NE(at, std::string::npos);
+    EXPECT_EQ(holes, scene.find('\n', at + 1));  // the holes line follows the shape line
+    scene.replace(at + 1, scene.find('\n', holes + 1) - at - 1, "shape = " + shape);
+  }
+  std::ofstream(dir / "plate.toml") << scene;
+  const auto result = run_periflex("run " + (dir / "plate.toml").string() + " --until 4e-4 --quiet --out " +
+                                   (dir / "out").string() + " --points-out " + (dir / "points.csv").string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
   return {series(dir / "out" / "series.csv"), read_point_file((dir / "points.csv").string(), {})};
 }
@@ -103,9 +110,9 @@ void expect_same_run(const PlateRun& reference, const PlateRun& other, const std
 
 TEST(SpecimenFiles, PlateWithHoleFromPointsImageAndDxfMatchesTheTypedShapes) {
   const PlateRun typed = run_plate("typed", "");
-  const PlateRun points = run_plate("points", "{type=\"points\",file=\"" + kData + "plate_with_hole_points.csv\"}");
-  const PlateRun image = run_plate("image", "{type=\"image\",file=\"" + kData + "plate_with_hole.png\",width=0.08}");
-  const PlateRun dxf = run_plate("dxf", "{type=\"dxf\",file=\"" + kData + "plate_with_hole.dxf\",scale=1e-3,layer=\"outline\"}");
+  const PlateRun points = run_plate("points", "{ type = \"points\", file = \"" + kData + "plate_with_hole_points.csv\" }");
+  const PlateRun image = run_plate("image", "{ type = \"image\", file = \"" + kData + "plate_with_hole.png\", width = 0.08 }");
+  const PlateRun dxf = run_plate("dxf", "{ type = \"dxf\", file = \"" + kData + "plate_with_hole.dxf\", scale = 1e-3, layer = \"outline\" }");
   for (const auto* run : {&points, &image, &dxf}) {
     const std::string what = run == &points ? "points" : run == &image ? "image" : "dxf";
     expect_same_but_at_rim(typed.particles, run->particles, what);

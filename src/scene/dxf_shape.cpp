@@ -222,7 +222,8 @@ DxfOutline read_dxf_shape(const std::string& path, const DxfShapeOptions& option
   pieces.erase(std::remove_if(pieces.begin(), pieces.end(), [](const Piece& p) { return p.points.size() < 2; }),
                pieces.end());
   if (pieces.empty())
-    fail(path, 0, "has no line, arc, circle or polyline" + (options.layer.empty() ? std::string() : " on layer '" + options.layer + "'"));
+    fail(path, 0, "has no line, arc, circle or polyline" +
+                      (options.layer.empty() ? std::string() : " on layer '" + options.layer + "'"));
 
   // the gap closed between ends: 1e-6 of the drawing's size unless given
   Vec2 lo = pieces.front().points.front(), hi = lo;

@@ -148,7 +148,8 @@ void read_file_shape_at(TableReader& in, const std::string& path, const std::str
     options.width = in.required_number("width", Sign::kPositive, true);
     options.height = in.number("height", 0.0, Sign::kPositive, true);
     options.threshold = in.number("threshold", 0.5, Sign::kPositive);
-    if (options.threshold > 1.0) in.fail("threshold", "must be in (0, 1] (a relative luminance), found " + format_number(options.threshold));
+    if (options.threshold > 1.0)
+      in.fail("threshold", "must be in (0, 1] (a relative luminance), found " + format_number(options.threshold));
     options.dx = flex.grid_spacing;
     options.thickness = flex.thickness;
     options.max_particles = limits.max_particles;

@@ -464,7 +464,8 @@ class SceneBuilder {
     if (shape == nullptr) in.fail_missing("shape");
     // a shape from a file (points, image, dxf) is read once grid_spacing, thickness and holes are known
     const bool from_file = is_file_shape(*shape);
-    if (!from_file) flex.shape = read_shape(context_, *shape, in.key_path("shape"), {Kind::kBox, Kind::kCircle, Kind::kPolygon, Kind::kBoolean});
+    if (!from_file)
+      flex.shape = read_shape(context_, *shape, in.key_path("shape"), {Kind::kBox, Kind::kCircle, Kind::kPolygon, Kind::kBoolean});
     if (const toml::node* holes = in.node("holes")) flex.holes = read_shape_list(context_, *holes, in.key_path("holes"), kRegionShapeKinds);
 
     // grid and horizon

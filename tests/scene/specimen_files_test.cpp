@@ -58,9 +58,9 @@ struct PlateRun {
   ParticleCloud particles;
 };
 
-// The shipped scene with its shape and holes lines replaced by `shape` (empty: as shipped).
-PlateRun run_plate(const std::string& name, const std::string& shape) {
-  const auto dir = testing::fresh_directory("specimen_plate_" + name);
+// The shipped plate with a hole, its shape and holes lines replaced by `shape` (empty: as
+// shipped), written into `dir`.
+std::string plate_scene(const std::filesystem::path& dir, const std::string& shape) {
   std::string scene = read_text(testing::scene("plate_with_hole.toml"));
   if (!shape.empty()) {
     const size_t at = scene.find("\nshape = "), holes = scene.find("\nholes = ");
@@ -69,6 +69,12 @@ PlateRun run_plate(const std::string& name, const std::string& shape) {
     scene.replace(at + 1, scene.find('\n', holes + 1) - at - 1, "shape = " + shape);
   }
   std::ofstream(dir / "plate.toml") << scene;
+  return (dir / "plate.toml").string();
+}
+
+PlateRun run_plate(const std::string& name, const std::string& shape) {
+  const auto dir = testing::fresh_directory("specimen_plate_" + name);
+  plate_scene(dir, shape);
   const auto result = run_periflex("run " + (dir / "plate.toml").string() + " --until 4e-4 --quiet --out " +
                                    (dir / "out").string() + " --points-out " + (dir / "points.csv").string());
   EXPECT_EQ(result.exit_code, 0) << result.output;
@@ -121,6 +127,20 @@ TEST(SpecimenFiles, PlateWithHoleFromPointsImageAndDxfMatchesTheTypedShapes) {
   }
   // the point file is the typed body itself
   EXPECT_EQ(points.columns, typed.columns);
+}
+
+// `check` says where each body's geometry came from and the box its particles fill.
+TEST(SpecimenFiles, CheckNamesWhereTheGeometryCameFrom) {
+  const auto dir = testing::fresh_directory("specimen_check");
+  const auto typed = run_periflex("check " + testing::scene("plate_with_hole.toml"));
+  EXPECT_EQ(typed.exit_code, 0) << typed.output;
+  EXPECT_NE(typed.output.find("'plate': shape of the scene, x in [-0.04, 0.04] m, y in [-0.02, 0.02] m"),
+            std::string::npos) << typed.output;
+  const std::string dxf = kData + "plate_with_hole.dxf";
+  const auto drawn = run_periflex("check " + plate_scene(dir, "{ type = \"dxf\", file = \"" + dxf + "\", scale = 1e-3 }"));
+  EXPECT_EQ(drawn.exit_code, 0) << drawn.output;
+  EXPECT_NE(drawn.output.find("'plate': dxf " + dxf + ", x in [-0.04, 0.04] m, y in [-0.02, 0.02] m"),
+            std::string::npos) << drawn.output;
 }
 
 }  // namespace

@@ -89,6 +89,14 @@ void GuiApp::watch_scene_file() {
   if (scene_watch_.changed(steady_seconds())) {
     log_.add("scene file " + scene_watch_.path() + " changed on disk: reloading");
     send(SimCommand::make(SimCommand::Kind::kReload, "file"));
+    return;
+  }
+  // a point file, image or drawing the scene reads, saved again: the same reload
+  for (FileWatch& watch : geometry_watches_) {
+    if (!watch.changed(steady_seconds())) continue;
+    log_.add("geometry file " + watch.path() + " changed on disk: reloading");
+    send(SimCommand::make(SimCommand::Kind::kReload, "file"));
+    return;
   }
 }
 

@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "core/error.h"
+#include "scene/file_shape_reader.h"
 
 namespace periflex {
 
@@ -113,6 +114,9 @@ void SimWorker::publish() {
   s.scene_path = scene_path_;
   s.scene_name = scene_.name;
   s.scene_description = scene_.description;
+  s.geometry_files.clear();
+  for (const FlexBodyDef& flex : scene_.flex_bodies)
+    if (!geometry_file(flex).empty()) s.geometry_files.push_back(geometry_file(flex));
   s.generation = generation_;
   s.scene_generation = scene_generation_;
   s.numerical_error = numerical_error_;

@@ -65,6 +65,12 @@ bool is_file_shape(const toml::node& node) {
   return type != nullptr && std::find(kFileShapeTypes.begin(), kFileShapeTypes.end(), type->get()) != kFileShapeTypes.end();
 }
 
+std::string geometry_file(const FlexBodyDef& flex) {
+  // geometry_source is "<type> <path>" (read_file_shape writes it so)
+  const size_t space = flex.geometry_source.find(' ');
+  return space == std::string::npos ? std::string() : flex.geometry_source.substr(space + 1);
+}
+
 std::string scene_relative_path(const std::string& scene_file, const std::string& file) {
   const std::filesystem::path path(file);
   if (path.is_absolute()) return file;

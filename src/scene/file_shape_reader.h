@@ -26,6 +26,10 @@ bool is_file_shape(const toml::node& node);
 void read_file_shape(const ReadContext& context, const toml::node& node, const std::string& key,
                      const LimitsDef& limits, FlexBodyDef& flex);
 
+// The file a flexible body's shape was read from (its path as opened), or "" for a shape typed in
+// the scene: what the window watches for its hot reload.
+std::string geometry_file(const FlexBodyDef& flex);
+
 // The path of `file` as written in a scene read from `scene_file`: relative to its folder.
 std::string scene_relative_path(const std::string& scene_file, const std::string& file);
 

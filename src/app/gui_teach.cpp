@@ -53,6 +53,15 @@ void GuiApp::panel_description() {
     ImGui::TextWrapped("%s", description_.c_str());
   }
   dump_.note_item("description");
+  // what the scene holds: its particles, and where each flexible body's geometry came from
+  if (status_.info.particles > 0) ImGui::Text("%ld particles", static_cast<long>(status_.info.particles));
+  std::string geometry;
+  for (const std::string& line : status_.geometry_summary) {
+    ImGui::TextWrapped("%s", line.c_str());
+    geometry += (geometry.empty() ? "" : " | ") + line;
+  }
+  dump_.state("particles", std::to_string(status_.info.particles));
+  dump_.state("geometry", geometry);
 }
 
 void GuiApp::draw_performance(int fb_width) {

@@ -626,12 +626,21 @@ case "$case_name" in
     cp "$scenes/bracket_dxf.toml" "$work/bracket.toml" || fail "copy of the scene"
     cp "$scenes/specimens/bracket.dxf" "$work/specimens/bracket.dxf" || fail "copy of the drawing"
     start "$work/bracket.toml" --set solver.end_time=1
+    # About this scene: the particle count, and the drawing the bracket came from with its box
+    click description_header
+    wait_until 10 "the description panel" '[[ -n "$(centre description)" ]]'
+    [[ "$(state geometry)" == "'bracket': dxf "*"bracket.dxf, x in [0, 0.06] m, y in [0, 0.06] m" ]] ||
+      fail "About this scene says '$(state geometry)'"
+    before=$(state particles)
+    (( before > 1000 )) || fail "About this scene counts $before particles"
     generation=$(state scene_generation)
     # the bolt holes drawn smaller (radius 4 mm to 3 mm): reloaded
     perl -0pi -e 's/\n40\n4\n/\n40\n3\n/g' "$work/specimens/bracket.dxf"
     grep -q '^3$' "$work/specimens/bracket.dxf" || fail "the edit did not take"
     wait_until 10 "the saved drawing to be reloaded" '(( $(state scene_generation) > generation ))'
     grep -q "geometry file .*bracket.dxf changed on disk: reloading" "$log" || fail "the reload is not in the log"
+    # smaller holes, more particles
+    wait_until 10 "more particles counted" '(( $(state particles) > before ))'
     # saved broken (one line, no closed outline): the error over the picture naming the drawing
     generation=$(state scene_generation)
     printf '0\nSECTION\n2\nENTITIES\n0\nLINE\n8\noutline\n10\n0\n20\n0\n11\n1\n21\n0\n0\nENDSEC\n0\nEOF\n' \

@@ -159,9 +159,9 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   # inspector of the particle under the pointer, the plot window (a column picked, zoomed and
   # exported; two series in one plot, exported and compared with series.csv), the knife, the
   # inspector of a rigid body clicked, the drawing of active contacts (key and box), the history
-  # (Left, Right, the timeline slider, resume)
+  # (Left, Right, the timeline slider, resume), the reload of a DXF drawing the scene reads
   foreach(case record_png record_plot record_mp4 record_gif record_interrupted keys damping refusal unstable spring pull
-               deform teach inspect plot plot_series knife body contacts history)
+               deform teach inspect plot plot_series knife body contacts history specimen_reload)
     gui_input_test(${case})
   endforeach()
 

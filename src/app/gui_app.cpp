@@ -129,6 +129,9 @@ void GuiApp::take_snapshot() {
     shown_scene_path_ = status_.scene_path;
     description_ = scene_description(status_.scene_path, status_.scene_description);
     scene_watch_.watch(status_.scene_path, wall_seconds());
+    geometry_watches_.assign(status_.geometry_files.size(), FileWatch());
+    for (size_t k = 0; k < geometry_watches_.size(); ++k)
+      geometry_watches_[k].watch(status_.geometry_files[k], wall_seconds());
     const auto found = std::find(scenes_.begin(), scenes_.end(),
                                  fs::path(status_.scene_path).filename().string());
     scene_choice_ = found == scenes_.end() ? -1 : static_cast<int>(found - scenes_.begin());

@@ -137,6 +137,7 @@ class GuiApp {
   std::string description_;         // of the scene shown (app/scene_description.h)
   std::string shown_scene_path_;    // the file it came from; reloading it keeps the camera
   FileWatch scene_watch_;           // that file, for the hot reload
+  std::vector<FileWatch> geometry_watches_;  // the point files, images and drawings it reads
   double frame_seconds_ = 0.0, last_frame_wall_ = 0.0;
   PlotHistory history_;
   bool show_plot_ = false;          // the plot window (P)

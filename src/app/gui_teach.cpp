@@ -53,6 +53,15 @@ void GuiApp::panel_description() {
     ImGui::TextWrapped("%s", description_.c_str());
   }
   dump_.note_item("description");
+  // what the scene holds: its particles, and where each flexible body's geometry came from
+  if (status_.info.particles > 0) ImGui::Text("%ld particles", static_cast<long>(status_.info.particles));
+  std::string geometry;
+  for (const std::string& line : status_.geometry_summary) {
+    ImGui::TextWrapped("%s", line.c_str());
+    geometry += (geometry.empty() ? "" : " | ") + line;
+  }
+  dump_.state("particles", std::to_string(status_.info.particles));
+  dump_.state("geometry", geometry);
 }
 
 void GuiApp::draw_performance(int fb_width) {
@@ -89,6 +98,14 @@ void GuiApp::watch_scene_file() {
   if (scene_watch_.changed(steady_seconds())) {
     log_.add("scene file " + scene_watch_.path() + " changed on disk: reloading");
     send(SimCommand::make(SimCommand::Kind::kReload, "file"));
+    return;
+  }
+  // a point file, image or drawing the scene reads, saved again: the same reload
+  for (FileWatch& watch : geometry_watches_) {
+    if (!watch.changed(steady_seconds())) continue;
+    log_.add("geometry file " + watch.path() + " changed on disk: reloading");
+    send(SimCommand::make(SimCommand::Kind::kReload, "file"));
+    return;
   }
 }
 

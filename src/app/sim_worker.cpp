@@ -6,6 +6,9 @@
 #include <exception>
 
 #include "core/error.h"
+#include "scene/file_shape_reader.h"
+#include "scene/grid_scan.h"
+#include "scene/toml_reader.h"
 
 namespace periflex {
 
@@ -113,6 +116,17 @@ void SimWorker::publish() {
   s.scene_path = scene_path_;
   s.scene_name = scene_.name;
   s.scene_description = scene_.description;
+  s.geometry_files.clear();
+  s.geometry_summary.clear();
+  for (const FlexBodyDef& flex : scene_.flex_bodies) {
+    if (!geometry_file(flex).empty()) s.geometry_files.push_back(geometry_file(flex));
+    Vec2 lo, hi;
+    shape_bounds(flex.shape, lo, hi);
+    s.geometry_summary.push_back("'" + flex.name + "': " +
+                                 (flex.geometry_source.empty() ? std::string("shape of the scene") : flex.geometry_source) +
+                                 ", x in [" + format_number(lo.x()) + ", " + format_number(hi.x()) + "] m, y in [" +
+                                 format_number(lo.y()) + ", " + format_number(hi.y()) + "] m");
+  }
   s.generation = generation_;
   s.scene_generation = scene_generation_;
   s.numerical_error = numerical_error_;

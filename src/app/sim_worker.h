@@ -87,6 +87,9 @@ struct WorkerStatus {
   std::string scene_path;
   std::string scene_name;
   std::string scene_description;      // its scene.description key
+  std::vector<std::string> geometry_files;  // files the flexible bodies' shapes were read from
+  // per flexible body: where its geometry came from and the box its particles fill
+  std::vector<std::string> geometry_summary;
   long generation = 0;                // grows when the model is rebuilt (reset, reload, switch)
   long scene_generation = 0;          // grows when a scene is (re)loaded from disk
   std::optional<NumericalDiagnostic> numerical_error;  // the last failure; cleared by reset/reload

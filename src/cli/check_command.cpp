@@ -4,6 +4,7 @@
 
 #include "cli/scene_setup.h"
 #include "core/error.h"
+#include "scene/grid_scan.h"
 #include "solve/simulation.h"
 
 namespace periflex {
@@ -56,6 +57,12 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
       std::printf("  %-22s'%s': %s, %s, poisson_ratio = %s\n", "peridynamic model", flex.name.c_str(),
                   mat.model == PdMaterialDef::Model::kBilinearSoftening ? "bond-based, bilinear softening" : "bond-based",
                   plane, mat.plane_strain ? "1/4" : "1/3");
+    // where the body's geometry came from, and the box its particles fill
+    Vec2 lo, hi;
+    shape_bounds(flex.shape, lo, hi);
+    std::printf("  %-22s'%s': %s, x in [%g, %g] m, y in [%g, %g] m\n", "geometry", flex.name.c_str(),
+                flex.geometry_source.empty() ? "shape of the scene" : flex.geometry_source.c_str(), lo.x(), hi.x(),
+                lo.y(), hi.y());
   }
   std::printf("  %-22s%d\n", "coordinates", m.coordinates);
   std::printf("  %-22s%d (%d redundant)\n", "constraint equations", m.constraint_equations, m.redundant_equations);

@@ -160,6 +160,9 @@ int run_main(int argc, char** argv) {
   run_cmd->add_flag("--quiet", run.quiet, "No progress bar; only the final line");
   run_cmd->add_option("--vtk-every", run.vtk_every, "Write VTK snapshots (particles and rigid bodies, for ParaView) every N steps")
       ->check(kCount);
+  run_cmd->add_option("--points-out", run.points_out,
+                      "Write the flexible bodies' particles as a point file (x, y, volume, block, no_fail), "
+                      "readable by shape = { type = \"points\" }");
   run_cmd->add_option("--checkpoint-every", run.checkpoint_every,
                       "Write the whole state every T simulated seconds (at exact multiples of T)");
   run_cmd->add_option("--checkpoint-dir", run.checkpoint_dir, "Folder of the checkpoints (default <out>/checkpoints)");

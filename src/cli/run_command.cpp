@@ -24,6 +24,7 @@
 #include "core/sim_time.h"
 #include "output/atomic_file.h"
 #include "output/checkpoint_file.h"
+#include "output/point_file_writer.h"
 #include "output/run_record.h"
 #include "output/series_row.h"
 #include "io/series_writer.h"
@@ -127,6 +128,8 @@ RunOutcome run_and_report(const RunOptions& requested) {
     return outcome;
   }
   SceneDef scene = load_run_scene(options);  // every flag, the scene's budget and the output paths
+  if (!options.points_out.empty() && scene.flex_bodies.empty())
+    throw InputError({"command line", 0, 0, "--points-out"}, "scene '" + scene.name + "' has no flexible body to write");
   if (options.threads > 0) omp_set_num_threads(options.threads);
 
   // load_run_scene filled in the default out/<safe scene name> and checked the folder
@@ -140,6 +143,8 @@ RunOutcome run_and_report(const RunOptions& requested) {
 
   Simulation sim(scene);
   const ModelInfo& info = sim.info();
+  // the particles as the run starts from them, whatever happens to the run
+  if (!options.points_out.empty()) write_point_file(options.points_out, scene);
   // the plot over the frames: columns of this run's series.csv, refused before anything is run
   std::shared_ptr<const std::vector<std::string>> plot_row_columns;
   std::vector<std::string> plot_columns;

@@ -21,6 +21,7 @@ struct RunOptions {
   std::string device_description;       // the GPU's driver and renderer, filled when it is checked
   bool quiet = false;
   long vtk_every = 0;                   // steps between VTK snapshots; 0: none
+  std::string points_out;               // the flexible bodies as a point file; empty: none
 
   // Checkpoints (output/checkpoint_file.h).
   double checkpoint_every = 0.0;        // simulated seconds between checkpoint files; 0: none

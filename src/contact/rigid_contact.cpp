@@ -49,6 +49,7 @@ RigidContact::Side RigidContact::make_side(int body, const BodyDef& def) {
         for (const Vec2& c : corners(shape)) features.push_back({c, 0.0});
         break;
       case ShapeDef::Kind::kNone:
+      case ShapeDef::Kind::kBoolean:  // never a contact shape (flexible bodies and regions only)
         break;
     }
     // the convex core the manifold uses, with its rounding: a box's or convex polygon's corners;

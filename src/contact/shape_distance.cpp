@@ -86,6 +86,7 @@ ShapeDistance signed_distance(const ShapeDef& shape, const Vec2& p) {
     case ShapeDef::Kind::kPolygon:
       return polygon_distance(shape, p);
     case ShapeDef::Kind::kNone:
+    case ShapeDef::Kind::kBoolean:  // never a contact shape (flexible bodies and regions only)
       break;
   }
   return {std::numeric_limits<double>::infinity(), Vec2::UnitX()};
@@ -124,6 +125,7 @@ void bounding_circle(const ShapeDef& shape, Vec2& centre, double& radius) {
       return;
     }
     case ShapeDef::Kind::kNone:
+    case ShapeDef::Kind::kBoolean:
       break;
   }
   centre = Vec2::Zero();

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "scene/grid_scan.h"
+#include "scene/shape_boolean.h"
 
 namespace periflex {
 
@@ -11,6 +12,8 @@ double grid_shape_area(const ShapeDef& shape) {
   switch (shape.kind) {
     case ShapeDef::Kind::kNone:
       return 0.0;
+    case ShapeDef::Kind::kBoolean:
+      return boolean_area_bound(shape);
     case ShapeDef::Kind::kBox:
       return shape.width * shape.height;
     case ShapeDef::Kind::kCircle:

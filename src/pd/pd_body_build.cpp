@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "pd/cloud_grid.h"
 #include "pd/neighbor_search.h"
 #include "pd/pd_body_impl.h"
 #include "pd/pd_material.h"
@@ -187,8 +188,9 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
     if (!ok) throw InputError(with_key(def.where, key), "flex body '" + def.name + "': " + message);
   };
   require(def.shape.kind == ShapeDef::Kind::kBox || def.shape.kind == ShapeDef::Kind::kCircle ||
-              def.shape.kind == ShapeDef::Kind::kPolygon || def.shape.kind == ShapeDef::Kind::kBar,
-          "shape", "needs a box, circle, polygon or bar shape");
+              def.shape.kind == ShapeDef::Kind::kPolygon || def.shape.kind == ShapeDef::Kind::kBar ||
+              def.shape.kind == ShapeDef::Kind::kBoolean,
+          "shape", "needs a box, circle, polygon, bar or combined shape");
   require(def.grid_spacing > 0.0, "grid_spacing", "grid_spacing must be positive");
   require(def.thickness > 0.0, "thickness", "thickness must be positive");
   require(def.horizon_ratio >= 1.0, "horizon_ratio", "horizon_ratio must be at least 1");
@@ -213,7 +215,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   // particles on the grid
   m->dx = def.grid_spacing;
   m->delta = def.horizon_ratio * def.grid_spacing;
-  m->grid = fill_grid(def.shape, def.holes, m->dx);
+  m->grid = body_particles(def);
   const int n = m->n();
   require(n > 0, "shape", "the shape holds no particle at this grid_spacing");
   const double v = m->dx * m->dx * def.thickness;
@@ -232,11 +234,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   m->s0 = m->law->critical_stretch();
 
   // no-fail flags, bonds, the law's coefficients, loads
-  m->no_fail.assign(n, 0);
-  for (int i = 0; i < n; ++i) {
-    const Vec2 p(m->grid.x[i], m->grid.y[i]);
-    for (const ShapeDef& region : def.no_fail_regions) m->no_fail[i] |= region.contains(p) ? 1 : 0;
-  }
+  m->no_fail = body_no_fail(def, m->grid);
   std::vector<double> k0, nx2;
   make_bonds(*m, k0, nx2);
   m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, k0, nx2, m->no_fail_flags()}, m->bonds);

@@ -71,7 +71,7 @@ struct PdBody::Impl {
     if (device) device->bonds_changed();
   }
 
-  const uint8_t* no_fail_flags() const { return def.no_fail_regions.empty() ? nullptr : no_fail.data(); }
+  const uint8_t* no_fail_flags() const { return def.no_fail_regions.empty() && !def.particles ? nullptr : no_fail.data(); }
   const double* pos(const Eigen::VectorXd& q) const { return q.data() + offset; }
   int n() const { return grid.size(); }
 };

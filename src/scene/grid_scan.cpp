@@ -5,6 +5,8 @@
 #include <limits>
 #include <memory>
 
+#include "scene/shape_boolean.h"
+
 namespace periflex {
 
 namespace {
@@ -29,6 +31,9 @@ class RowShape {
     if (shape.kind == ShapeDef::Kind::kBar) angle_ = std::atan2(shape.p2.y() - shape.p1.y(), shape.p2.x() - shape.p1.x());
     cos_ = std::cos(angle_);
     sin_ = std::sin(angle_);
+    // a combined shape combines the runs of its operands, row by row
+    for (const ShapeDef& operand : shape.operands)
+      if (shape.kind == ShapeDef::Kind::kBoolean) operands_.push_back(std::make_unique<RowShape>(operand, frame));
     if (shape.kind != ShapeDef::Kind::kPolygon) return;
     // edges sorted by their lower end, so a row adds the edges it reaches
     const size_t n = shape.vertices.size();
@@ -46,6 +51,9 @@ class RowShape {
         return;
       case ShapeDef::Kind::kPolygon:
         polygon_runs(j, out);
+        return;
+      case ShapeDef::Kind::kBoolean:
+        boolean_runs(j, out);
         return;
       default:
         convex_runs(j, out);
@@ -157,6 +165,8 @@ class RowShape {
     }
   }
 
+  void boolean_runs(long j, std::vector<Run>& out);
+
   // Smallest i in [0, nx] whose cell centre is at or beyond x.
   long first_at_or_after(double x, long j) const {
     long i = clamp_index(std::ceil((x - frame_.origin.x()) / frame_.dx), 0, frame_.nx);
@@ -171,6 +181,7 @@ class RowShape {
   std::vector<Edge> edges_, active_;
   size_t next_ = 0;
   std::vector<double> crossings_;
+  std::vector<std::unique_ptr<RowShape>> operands_;
 };
 
 // Sorts runs and merges the overlapping ones.
@@ -216,6 +227,27 @@ std::vector<Run> intersect(const std::vector<Run>& a, const std::vector<Run>& b)
   return out;
 }
 
+// The operands' runs of row j combined as the inside test combines them.
+void RowShape::boolean_runs(long j, std::vector<Run>& out) {
+  std::vector<Run> combined, other;
+  for (size_t k = 0; k < operands_.size(); ++k) {
+    other.clear();
+    operands_[k]->runs(j, other);
+    merge(other);
+    if (k == 0) {
+      combined = other;
+    } else if (shape_.combine == ShapeDef::Combine::kUnion) {
+      combined.insert(combined.end(), other.begin(), other.end());
+      merge(combined);
+    } else if (shape_.combine == ShapeDef::Combine::kIntersection) {
+      combined = intersect(combined, other);
+    } else {
+      combined = subtract(combined, other);
+    }
+  }
+  out.insert(out.end(), combined.begin(), combined.end());
+}
+
 // Rows of the frame a shape's bounds reach, as a [first, last] index range.
 void row_range(const ShapeDef& shape, const GridFrame& frame, long& first, long& last) {
   Vec2 lo, hi;
@@ -231,6 +263,9 @@ void shape_bounds(const ShapeDef& shape, Vec2& lo, Vec2& hi) {
   hi = Vec2::Zero();
   switch (shape.kind) {
     case ShapeDef::Kind::kNone:
+      return;
+    case ShapeDef::Kind::kBoolean:
+      boolean_bounds(shape, lo, hi);
       return;
     case ShapeDef::Kind::kBox: {
       // the rotated half-extents projected on the axes
@@ -281,18 +316,20 @@ GridFrame grid_frame(const ShapeDef& shape, double dx) {
 
 double grid_scan_work(const ShapeDef& shape, const std::vector<ShapeDef>& holes, const GridFrame& frame,
                       const std::vector<ShapeDef>& inside) {
-  // every row asks every shape for its runs; a polygon also pays for each edge on each row it spans
-  auto work = [&](const ShapeDef& s) {
+  // every row asks every shape for its runs; a polygon also pays for each edge on each row it
+  // spans; a combined shape, for each of its operands
+  auto work = [&](const ShapeDef& s, auto&& self) -> double {
     double total = static_cast<double>(frame.ny);
+    for (const ShapeDef& operand : s.operands) total += self(operand, self);
     if (s.kind != ShapeDef::Kind::kPolygon) return total;
     const size_t n = s.vertices.size();
     for (size_t i = 0, j = n - 1; i < n; j = i++)
       total += std::abs(s.vertices[i].y() - s.vertices[j].y()) / frame.dx + 1.0;
     return total;
   };
-  double total = work(shape);
-  for (const ShapeDef& h : holes) total += work(h);
-  for (const ShapeDef& s : inside) total += work(s);
+  double total = work(shape, work);
+  for (const ShapeDef& h : holes) total += work(h, work);
+  for (const ShapeDef& s : inside) total += work(s, work);
   return total;
 }
 

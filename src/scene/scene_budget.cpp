@@ -54,7 +54,23 @@ struct BodyCount {
   double particles = 0.0, neighbours = 0.0;
 };
 
+// A body of particles given one by one: its count, and as neighbours the grid offsets within
+// the reach for every particle (an upper bound: an interior particle's count).
+BodyCount count_cloud(const FlexBodyDef& flex) {
+  BodyCount count;
+  count.particles = static_cast<double>(flex.particles->size());
+  const double reach = flex.horizon_ratio + (flex.partial_volume_correction ? 0.5 : 0.0);
+  const long r = static_cast<long>(std::ceil(reach)) + 1;
+  double offsets = 0.0;
+  for (long b = -r; b <= r; ++b)
+    for (long a = -r; a <= r; ++a)
+      if (!(a == 0 && b == 0) && double(a * a + b * b) <= reach * reach * (1 + 1e-9)) offsets += 1.0;
+  count.neighbours = count.particles * offsets;
+  return count;
+}
+
 BodyCount count_particles_and_neighbours(const FlexBodyDef& flex, const GridFrame& frame) {
+  if (flex.particles) return count_cloud(flex);
   // runs by row, rows in increasing order
   std::vector<long> row_of;                      // row index j of each stored row
   std::vector<std::vector<std::pair<long, long>>> runs;

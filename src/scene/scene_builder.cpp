@@ -6,6 +6,7 @@
 #include <set>
 
 #include "scene/contact_reader.h"
+#include "scene/file_shape_reader.h"
 #include "scene/function_reader.h"
 #include "scene/material_law_keys.h"
 #include "scene/scene_loader.h"
@@ -461,13 +462,17 @@ class SceneBuilder {
     // geometry: an area filled with particles, minus holes
     const toml::node* shape = in.node("shape");
     if (shape == nullptr) in.fail_missing("shape");
-    flex.shape = read_shape(context_, *shape, in.key_path("shape"), {Kind::kBox, Kind::kCircle, Kind::kPolygon});
-    if (const toml::node* holes = in.node("holes")) flex.holes = read_shape_list(context_, *holes, in.key_path("holes"));
+    // a shape from a file (points, image, dxf) is read once grid_spacing, thickness and holes are known
+    const bool from_file = is_file_shape(*shape);
+    if (!from_file)
+      flex.shape = read_shape(context_, *shape, in.key_path("shape"), {Kind::kBox, Kind::kCircle, Kind::kPolygon, Kind::kBoolean});
+    if (const toml::node* holes = in.node("holes")) flex.holes = read_shape_list(context_, *holes, in.key_path("holes"), kRegionShapeKinds);
 
     // grid and horizon
     flex.grid_spacing = in.required_number("grid_spacing", Sign::kPositive, true);
     flex.thickness = in.number("thickness", flex.thickness, Sign::kPositive, true);
     check_range(in, "thickness", flex.thickness, 1e-9, 1e3, "m");
+    if (from_file) read_file_shape(context_, *shape, in.key_path("shape"), scene_.limits, flex);
     flex.horizon_ratio = in.number("horizon_ratio", flex.horizon_ratio, Sign::kPositive);
     // the budget names these where they were set, in the file or by --set
     for (const char* key : {"grid_spacing", "horizon_ratio"}) note_origin(in, key);
@@ -505,7 +510,7 @@ class SceneBuilder {
     const std::string damage = in.choice("damage", {"exclude_notch", "include_notch"}, "exclude_notch");
     flex.damage = damage == "include_notch" ? FlexBodyDef::Damage::kIncludeNotch : FlexBodyDef::Damage::kExcludeNotch;
     if (const toml::node* no_fail = in.node("no_fail"))
-      flex.no_fail_regions = read_shape_list(context_, *no_fail, in.key_path("no_fail"));
+      flex.no_fail_regions = read_shape_list(context_, *no_fail, in.key_path("no_fail"), kRegionShapeKinds);
 
     // material
     const toml::table* material = in.optional_table("material");
@@ -608,7 +613,7 @@ class SceneBuilder {
                                                     : RegionLoadDef::Kind::kBodyForce;
     const toml::node* region = in.node("region");
     if (region == nullptr) in.fail_missing("region");
-    load.region = read_shape(context_, *region, in.key_path("region"));
+    load.region = read_shape(context_, *region, in.key_path("region"), kRegionShapeKinds);
     if (const toml::node* fx = in.node("fx")) load.fx = read_time_function(context_, *fx, in.key_path("fx"));
     if (const toml::node* fy = in.node("fy")) load.fy = read_time_function(context_, *fy, in.key_path("fy"));
     // a load with neither component does nothing
@@ -636,7 +641,7 @@ class SceneBuilder {
     }
     const toml::node* region = in.node("region");
     if (region == nullptr) in.fail_missing("region");
-    attachment.region = read_shape(context_, *region, in.key_path("region"));
+    attachment.region = read_shape(context_, *region, in.key_path("region"), kRegionShapeKinds);
     in.finish();
     return attachment;
   }

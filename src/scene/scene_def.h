@@ -18,6 +18,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -26,14 +27,18 @@
 #include "core/time_function.h"
 #include "core/vec2.h"
 #include "scene/contact_def.h"
+#include "scene/particle_cloud.h"
 
 namespace periflex {
 
 // ---------------------------------------------------------------------------
 // Geometry. Used to draw rigid bodies and to fill / select particle regions.
 struct ShapeDef {
-  enum class Kind { kNone, kBox, kCircle, kPolygon, kBar };
+  enum class Kind { kNone, kBox, kCircle, kPolygon, kBar, kBoolean };
   Kind kind = Kind::kNone;
+  // kBoolean: the operands combined (scene/shape_boolean.h); difference: the first minus the others
+  enum class Combine { kUnion, kDifference, kIntersection } combine = Combine::kUnion;
+  std::vector<ShapeDef> operands;
   Vec2 center = Vec2::Zero();    // box and circle centre (body-fixed for rigid bodies)
   double width = 0.0, height = 0.0;  // box
   double radius = 0.0;               // circle; bar thickness / 2
@@ -179,6 +184,10 @@ struct FlexBodyDef {
   std::string name;
   ShapeDef shape;                 // box, circle or polygon
   std::vector<ShapeDef> holes;
+  // particles given one by one (a point file, an image): one particle at each, in this order,
+  // instead of the grid that fills `shape` (then the cloud's bounding box); null otherwise
+  std::shared_ptr<const ParticleCloud> particles;
+  std::string geometry_source;    // where the geometry came from, for reports ("" : the scene)
   double grid_spacing = 0.0;      // dx
   double thickness = 1.0;
   double horizon_ratio = 3.0;     // m: delta = m * dx

@@ -1,5 +1,6 @@
 #include "scene/scene_warnings.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "scene/grid_scan.h"
@@ -22,6 +23,15 @@ std::string located(SourceLocation where, const std::string& key, const std::str
 
 // Particles of `flex` inside every shape of `inside`.
 long particles_inside(const FlexBodyDef& flex, const std::vector<ShapeDef>& inside) {
+  // particles given one by one are tested one by one
+  if (flex.particles) {
+    long count = 0;
+    for (long k = 0; k < flex.particles->size(); ++k) {
+      const Vec2 p(flex.particles->x[k], flex.particles->y[k]);
+      count += std::all_of(inside.begin(), inside.end(), [&](const ShapeDef& s) { return s.contains(p); }) ? 1 : 0;
+    }
+    return count;
+  }
   return count_grid_cells(flex.shape, flex.holes, grid_frame(flex.shape, flex.grid_spacing), inside);
 }
 

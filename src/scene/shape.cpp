@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "scene/scene_def.h"
+#include "scene/shape_boolean.h"
 
 namespace periflex {
 
@@ -17,6 +18,8 @@ bool ShapeDef::contains(const Vec2& p) const {
   switch (kind) {
     case Kind::kNone:
       return false;
+    case Kind::kBoolean:
+      return boolean_contains(*this, p);
     case Kind::kBox: {
       // Rotate p into the box frame; points on the boundary count as inside.
       const Vec2 local = rotation(-angle) * (p - center);

@@ -11,6 +11,10 @@ std::vector<Vec2> shape_outline(const ShapeDef& shape, const Vec2& position, dou
   switch (shape.kind) {
     case ShapeDef::Kind::kNone:
       break;
+    case ShapeDef::Kind::kBoolean:
+      // drawn as its first operand (the plate of a plate minus holes)
+      if (!shape.operands.empty()) return shape_outline(shape.operands.front(), position, angle, segments);
+      break;
     case ShapeDef::Kind::kBox: {
       const Mat2 r = rotation(shape.angle);
       const double hw = 0.5 * shape.width, hh = 0.5 * shape.height;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/shape_boolean.h"
+
 namespace periflex {
 
 const char* shape_kind_name(ShapeDef::Kind kind) {
@@ -12,6 +14,7 @@ const char* shape_kind_name(ShapeDef::Kind kind) {
     case ShapeDef::Kind::kCircle: return "circle";
     case ShapeDef::Kind::kPolygon: return "polygon";
     case ShapeDef::Kind::kBar: return "bar";
+    case ShapeDef::Kind::kBoolean: return "union";
   }
   return "none";
 }
@@ -31,6 +34,7 @@ double shape_area(const ShapeDef& shape) {
     case ShapeDef::Kind::kPolygon: return std::abs(polygon_signed_area(shape.vertices));
     // a stadium: the swept rectangle plus the two half discs at the ends
     case ShapeDef::Kind::kBar: return (shape.p2 - shape.p1).norm() * 2.0 * shape.radius + kPi * shape.radius * shape.radius;
+    case ShapeDef::Kind::kBoolean: return boolean_area_bound(shape);
   }
   return 0.0;
 }
@@ -43,11 +47,20 @@ ShapeDef read_shape(const ReadContext& context, const toml::node& node, const st
 
   // the type names the allowed kinds only
   std::vector<std::string> names;
-  for (ShapeDef::Kind kind : allowed) names.emplace_back(shape_kind_name(kind));
+  for (ShapeDef::Kind kind : allowed) {
+    if (kind != ShapeDef::Kind::kBoolean) names.emplace_back(shape_kind_name(kind));
+    else names.insert(names.end(), {"union", "difference", "intersection"});
+  }
   TableReader in(context, *table, key, "shape '" + key + "'");
   const std::string type = in.required_choice("type", names);
 
   ShapeDef shape;
+  if (type == "union" || type == "difference" || type == "intersection") {
+    // other shapes combined, each of them any shape allowed here
+    shape = read_boolean_shape(in, type, allowed);
+    in.finish({}, "a '" + type + "' shape");
+    return shape;
+  }
   if (type == "box") {
     shape.kind = ShapeDef::Kind::kBox;
     shape.center = in.vec2("center", Vec2::Zero());
@@ -82,7 +95,7 @@ ShapeDef read_shape(const ReadContext& context, const toml::node& node, const st
     shape.radius = 0.5 * in.required_number("width", Sign::kPositive, true);
     if (!((shape.p2 - shape.p1).norm() > 0.0)) in.fail("p2", "a bar needs p1 and p2 to differ");
   }
-  in.finish({"center", "width", "height", "angle", "radius", "vertices", "p1", "p2"}, "a '" + type + "' shape");
+  in.finish({"center", "width", "height", "angle", "radius", "vertices", "p1", "p2", "shapes"}, "a '" + type + "' shape");
   return shape;
 }
 

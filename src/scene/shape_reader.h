@@ -24,7 +24,13 @@ std::vector<ShapeDef> read_shape_list(const ReadContext& context, const toml::no
                                           ShapeDef::Kind::kBox, ShapeDef::Kind::kCircle, ShapeDef::Kind::kPolygon,
                                           ShapeDef::Kind::kBar});
 
-// Area enclosed by the shape (0 for kNone).
+// Every kind a flexible body's shape, holes, no-fail zones and regions may have: the rigid
+// body's kinds and unions, differences and intersections of them.
+const std::vector<ShapeDef::Kind> kRegionShapeKinds = {ShapeDef::Kind::kBox, ShapeDef::Kind::kCircle,
+                                                       ShapeDef::Kind::kPolygon, ShapeDef::Kind::kBar,
+                                                       ShapeDef::Kind::kBoolean};
+
+// Area enclosed by the shape (0 for kNone; for a boolean shape a bound from above).
 double shape_area(const ShapeDef& shape);
 
 // Signed area of a polygon: positive when counter-clockwise.

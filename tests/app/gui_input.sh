@@ -628,6 +628,40 @@ case "$case_name" in
       '(( $(state scene_generation) > generation )) && [[ -z "$(centre load_error)" ]]'
     quit
     ;;
+  specimen_reload)
+    # the bracket read from its DXF drawing; the drawing saved again while the window shows it
+    mkdir -p "$work/specimens" || fail "folder for the drawing"
+    cp "$scenes/bracket_dxf.toml" "$work/bracket.toml" || fail "copy of the scene"
+    cp "$scenes/specimens/bracket.dxf" "$work/specimens/bracket.dxf" || fail "copy of the drawing"
+    start "$work/bracket.toml" --set solver.end_time=1
+    # About this scene: the particle count, and the drawing the bracket came from with its box
+    click description_header
+    wait_until 10 "the description panel" '[[ -n "$(centre description)" ]]'
+    [[ "$(state geometry)" == "'bracket': dxf "*"bracket.dxf, x in [0, 0.06] m, y in [0, 0.06] m" ]] ||
+      fail "About this scene says '$(state geometry)'"
+    before=$(state particles)
+    (( before > 1000 )) || fail "About this scene counts $before particles"
+    generation=$(state scene_generation)
+    # the bolt holes drawn smaller (radius 4 mm to 3 mm): reloaded
+    perl -0pi -e 's/\n40\n4\n/\n40\n3\n/g' "$work/specimens/bracket.dxf"
+    grep -q '^3$' "$work/specimens/bracket.dxf" || fail "the edit did not take"
+    wait_until 10 "the saved drawing to be reloaded" '(( $(state scene_generation) > generation ))'
+    grep -q "geometry file .*bracket.dxf changed on disk: reloading" "$log" || fail "the reload is not in the log"
+    # smaller holes, more particles
+    wait_until 10 "more particles counted" '(( $(state particles) > before ))'
+    # saved broken (one line, no closed outline): the error over the picture naming the drawing
+    generation=$(state scene_generation)
+    printf '0\nSECTION\n2\nENTITIES\n0\nLINE\n8\noutline\n10\n0\n20\n0\n11\n1\n21\n0\n0\nENDSEC\n0\nEOF\n' \
+      >"$work/specimens/bracket.dxf"
+    wait_until 10 "the error shown over the picture" '[[ -n "$(centre load_error)" ]]'
+    [[ "$(state load_error)" == *bracket.dxf*"not closed"* ]] || fail "the error does not name the drawing: $(state load_error)"
+    (( $(state scene_generation) == generation )) || fail "a broken drawing replaced the scene"
+    # mended: loaded, the error gone
+    cp "$scenes/specimens/bracket.dxf" "$work/specimens/bracket.dxf" || fail "copy of the drawing"
+    wait_until 10 "the mended drawing loaded, the error gone" \
+      '(( $(state scene_generation) > generation )) && [[ -z "$(centre load_error)" ]]'
+    quit
+    ;;
   inspect)
     # hovering a particle of the notched plate (drawn at true scale) shows what it is doing
     start notched_plate.toml --deform 1

@@ -1,0 +1,23 @@
+// The particles of a flexible body given one by one (a point file, an image): one particle at
+// each point, in the cloud's order, with the grid indices of its node (scene/cloud_lattice.h)
+// so that bonds keep whole grid offsets as on a filled shape.
+#pragma once
+
+#include "pd/particle_grid.h"
+#include "scene/particle_cloud.h"
+#include "scene/scene_def.h"
+
+namespace periflex {
+
+// Throws InputError (naming the file's line) for a point off the grid of spacing dx, two
+// points on one node, or a volume other than dx^2 thickness.
+ParticleGrid grid_from_cloud(const ParticleCloud& cloud, double dx, double thickness);
+
+// The particles of a flexible body as PdBody::build places them: its cloud, or its shape filled.
+ParticleGrid body_particles(const FlexBodyDef& def);
+
+// 1 for each particle of `grid` whose bonds never break: inside a no-fail region of the body,
+// or marked by its point file or image.
+std::vector<uint8_t> body_no_fail(const FlexBodyDef& def, const ParticleGrid& grid);
+
+}  // namespace periflex

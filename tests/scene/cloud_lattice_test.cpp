@@ -1,0 +1,63 @@
+// Points of a file placed on the body's grid: the indices follow the positions, and a point off
+// the grid, two points on one node or a wrong volume is refused naming its line.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "scene/cloud_lattice.h"
+
+namespace periflex {
+namespace {
+
+ParticleCloud cloud(const std::vector<Vec2>& points, double volume) {
+  ParticleCloud c;
+  for (size_t k = 0; k < points.size(); ++k) {
+    c.x.push_back(points[k].x());
+    c.y.push_back(points[k].y());
+    c.volume.push_back(volume);
+    c.no_fail.push_back(0);
+    c.line.push_back(static_cast<long>(k) + 10);
+  }
+  return c;
+}
+
+int error_line(const ParticleCloud& c, double dx, double t, std::string* message = nullptr) {
+  try {
+    place_on_lattice(c, dx, t, "f.csv");
+  } catch (const InputError& e) {
+    if (message) *message = e.what();
+    return e.where().line;
+  }
+  return -1;
+}
+
+TEST(CloudLattice, GridPointsGetTheirIndices) {
+  const double dx = 1.0 / 3.0;
+  const ParticleCloud c = cloud({{0.5 + 2 * dx, -1.0}, {0.5, -1.0 + dx}, {0.5 + dx, -1.0 + 3 * dx}}, dx * dx * 2.0);
+  const CloudLattice l = place_on_lattice(c, dx, 2.0, "f.csv");
+  EXPECT_EQ(l.origin, Vec2(0.5, -1.0));
+  EXPECT_EQ(l.ix, (std::vector<int32_t>{2, 0, 1}));
+  EXPECT_EQ(l.iy, (std::vector<int32_t>{0, 1, 3}));
+}
+
+TEST(CloudLattice, PointOffTheGridNamesItsLine) {
+  std::string message;
+  EXPECT_EQ(error_line(cloud({{0, 0}, {1, 0}, {2.4, 1}}, 1.0), 1.0, 1.0, &message), 12);
+  EXPECT_NE(message.find("0.4 grid spacings off"), std::string::npos) << message;
+}
+
+TEST(CloudLattice, CoincidentPointsNameBothLines) {
+  std::string message;
+  EXPECT_EQ(error_line(cloud({{0, 0}, {1, 0}, {2, 0}, {1, 1e-9}}, 1.0), 1.0, 1.0, &message), 13);
+  EXPECT_NE(message.find("coincides with the point of line 11"), std::string::npos) << message;
+}
+
+TEST(CloudLattice, VolumeOtherThanTheGridCellsNamesItsLine) {
+  ParticleCloud c = cloud({{0, 0}, {1, 0}}, 2.0);
+  c.volume[1] = 2.5;
+  std::string message;
+  EXPECT_EQ(error_line(c, 1.0, 2.0, &message), 11);
+  EXPECT_NE(message.find("differs from grid_spacing^2 x thickness"), std::string::npos) << message;
+}
+
+}  // namespace
+}  // namespace periflex

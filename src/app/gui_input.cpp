@@ -42,7 +42,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     if (k.key == GLFW_KEY_RIGHT) {
       if (status_.scrub >= 0) {
         SimCommand c = SimCommand::make(Kind::kScrubStep, "key");
-        c.count = 1;
+        c.direction = SimCommand::Direction::kForward;
         send(c);
       } else {
         send(SimCommand::make(Kind::kStep, "key"));
@@ -50,7 +50,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     }
     if (k.key == GLFW_KEY_LEFT) {
       SimCommand c = SimCommand::make(Kind::kScrubStep, "key");
-      c.count = -1;
+      c.direction = SimCommand::Direction::kBack;
       send(c);
     }
     if (k.repeat) continue;
@@ -107,7 +107,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       grabbing_ = false;
       send(c);
     } else if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f || io.KeyShift != grab_spring_.hard) {
-      c.count = 0;
+      c.new_grab = false;
       grab_spring_.target = world;
       grab_spring_.hard = io.KeyShift;
       c.spring = grab_spring_;
@@ -143,7 +143,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       grab_spring_ = *spring;
       SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
       c.spring = spring;
-      c.count = 1;
+      c.new_grab = true;
       send(c);
     }
   }

@@ -72,16 +72,16 @@ void GuiApp::execute(const ScriptAction& a) {
   else if (verb == "pause") send(command(Kind::kPause));
   else if (verb == "step") {
     SimCommand c = command(Kind::kStep);
-    c.count = a.args.empty() ? 1 : std::atoi(a.args[0].c_str());
+    c.steps = a.args.empty() ? 1 : std::atoi(a.args[0].c_str());
     send(c);
   } else if (verb == "history") {
     SimCommand c = command(Kind::kHistory);
     c.number = std::atof(a.args[0].c_str());
-    c.count = a.args.size() > 1 ? std::atoi(a.args[1].c_str()) : static_cast<int>(status_.history_budget >> 20);
+    c.history_budget_mb = a.args.size() > 1 ? std::atoi(a.args[1].c_str()) : static_cast<int>(status_.history_budget >> 20);
     send(c);
   } else if (verb == "back") {
     SimCommand c = command(Kind::kScrubStep);
-    c.count = -1;
+    c.direction = SimCommand::Direction::kBack;
     for (int k = a.args.empty() ? 1 : std::atoi(a.args[0].c_str()); k > 0; --k) send(c);
   } else if (verb == "scrub") {
     SimCommand c = command(Kind::kScrub);
@@ -162,7 +162,7 @@ void GuiApp::execute(const ScriptAction& a) {
     grab_spring_.target = Vec2(std::atof(a.args[0].c_str()), std::atof(a.args[1].c_str()));
     SimCommand c = command(Kind::kMouseSpring);
     c.spring = grab_spring_;
-    c.count = 0;  // a move, not a new grab
+    c.new_grab = false;  // a move, not a new grab
     send(c);
   } else if (verb == "release") {
     grabbing_ = false;
@@ -224,7 +224,7 @@ void GuiApp::grab(const ScriptAction& a) {
   grab_spring_ = *spring;
   SimCommand c = SimCommand::make(SimCommand::Kind::kMouseSpring, "script");
   c.spring = spring;
-  c.count = 1;
+  c.new_grab = true;
   send(c);
 }
 

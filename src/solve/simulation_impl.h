@@ -106,7 +106,6 @@ struct Simulation::Impl {
     for (auto& flex : model->flex_bodies) flex->set_break_timing(timing);
   }
 
-
   // --- stepping -----------------------------------------------------------------------
   // consistent initial conditions and the energy reference (initial_conditions.cpp)
   void initialize();

@@ -16,7 +16,7 @@ void GuiApp::inspect_body(int fb_width) {
   const bool wanted = inspected_body_ > 0;
   if (wanted != reactions_asked_) {
     SimCommand c = SimCommand::make(SimCommand::Kind::kReactions);
-    c.count = wanted ? 1 : 0;
+    c.with_reactions = wanted;
     send(std::move(c));
     reactions_asked_ = wanted;
   }

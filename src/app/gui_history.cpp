@@ -67,7 +67,7 @@ void GuiApp::panel_history() {
   if (changed) {
     SimCommand c = SimCommand::make(Kind::kHistory);
     c.number = std::max(0.0, history_interval_);
-    c.count = std::clamp(history_budget_mb_, 1, 1 << 20);
+    c.history_budget_mb = std::clamp(history_budget_mb_, 1, 1 << 20);
     send(c);
   }
 }

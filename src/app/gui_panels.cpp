@@ -112,7 +112,7 @@ void GuiApp::panel_simulation() {
   ImGui::SameLine();
   if (ImGui::Button("Step N")) {
     SimCommand c = SimCommand::make(Kind::kStep);
-    c.count = step_count_;
+    c.steps = step_count_;
     send(c);
   }
   dump_.note_item("step_n");

@@ -15,7 +15,7 @@ struct SimCommand {
     kRun,            // start or continue stepping
     kPause,          // stop stepping after the current step
     kToggleRun,      // run when paused, pause when running
-    kStep,           // pause, then take `count` steps
+    kStep,           // pause, then take `steps` steps
     kStepTo,         // pause, then step until the time reaches `number` (the first step at or after it)
     kReset,          // rebuild the current scene from memory, keeping the live settings
     kReload,         // re-read the scene file from disk (keeps the old model if it fails)
@@ -23,19 +23,27 @@ struct SimCommand {
     kApplySettings,  // replace the live settings with `settings`
     kSetParameter,   // set one live setting by name: `text` = key, `value` = value
     kSetSpeed,       // real-time factor `number`; <= 0 runs as fast as possible
-    kMouseSpring,    // set (or, when `spring` is empty, release) the mouse spring
+    kMouseSpring,    // set (or, when `spring` is empty, release) the mouse spring; `new_grab`: a
+                     // grab, not a drag of the one held (for the log)
     kCut,            // a knife: cut the bonds the segment `from` .. `to` crosses (drawn_x, drawn_y:
                      // the particles where the window draws them)
-    kReactions,      // snapshots carry the joints' reactions (count 1) or not (count 0)
+    kReactions,      // snapshots carry the joints' reactions (`with_reactions`) or not
     kRecord,         // publish recording snapshots every `number` simulated seconds; 0 stops
-    kHistory,        // keep a state every `number` simulated seconds (<= 0: off) within `count` MB
+    kHistory,        // keep a state every `number` simulated seconds (<= 0: off) within
+                     // `history_budget_mb` MB
     kScrub,          // pause and show the history state nearest the time `number`
-    kScrubStep,      // pause and show the history state `count` (-1: back, +1: forward) from the one shown
+    kScrubStep,      // pause and show the history state next to the one shown, in `direction`
     kResume,         // drop the history after the state shown and run from it
     kQuit,           // end the simulation thread
   };
   Kind kind = Kind::kPause;
-  int count = 1;
+  // what some kinds carry, each field for one kind only
+  int steps = 1;                 // kStep: how many steps (at least 1)
+  bool new_grab = false;         // kMouseSpring: a new grab rather than a drag of the one held
+  bool with_reactions = false;   // kReactions: snapshots carry the joints' reactions
+  int history_budget_mb = 1;     // kHistory: the history's memory budget in MB (at least 1)
+  enum class Direction { kBack, kForward };
+  Direction direction = Direction::kForward;  // kScrubStep: back or forward in the history
   std::string text;
   std::string value;
   double number = 0.0;

@@ -245,8 +245,8 @@ void SimWorker::apply(SimCommand& c) {
       }
       leave_scrub(("step" + by).c_str());
       running_ = false;
-      pending_steps_ += c.count > 0 ? c.count : 1;
-      log_.add("step x" + std::to_string(c.count > 0 ? c.count : 1) + by);
+      pending_steps_ += c.steps > 0 ? c.steps : 1;
+      log_.add("step x" + std::to_string(c.steps > 0 ? c.steps : 1) + by);
       break;
     case Kind::kStepTo: {
       if (numerical_error_) {
@@ -326,13 +326,13 @@ void SimWorker::apply(SimCommand& c) {
       mouse_stiffness_ = model_->set_mouse_spring(c.spring);
       // dragging sends a command per frame: log only grabbing and releasing
       if (!c.spring) log_.add("mouse spring released" + by);
-      else if (c.count == 1) {
+      else if (c.new_grab) {
         log_.add(c.spring->body >= 0 ? "grab body " + std::to_string(c.spring->body) + by
                                      : "grab particle " + std::to_string(c.spring->particle) + by);
       }
       break;
     case Kind::kReactions:
-      model_->set_reactions(c.count != 0);
+      model_->set_reactions(c.with_reactions);
       break;
     case Kind::kCut: {
       // paused or running, between two steps; a cut into a state shown changes its future
@@ -353,7 +353,7 @@ void SimWorker::apply(SimCommand& c) {
     case Kind::kHistory: {
       // the user's cadence and budget hold for every scene from now on
       history_auto_ = false;
-      const size_t budget = static_cast<size_t>(std::max(1, c.count)) << 20;
+      const size_t budget = static_cast<size_t>(std::max(1, c.history_budget_mb)) << 20;
       history_.configure(c.number, budget, model_->time());
       log_.add((history_.interval() > 0.0 ? "history: a state every " + std::to_string(history_.interval()) + " s"
                                           : std::string("history: off")) +
@@ -368,7 +368,7 @@ void SimWorker::apply(SimCommand& c) {
       }
       break;
     case Kind::kScrubStep:
-      scrub_step(c.count < 0 ? -1 : 1, by);
+      scrub_step(c.direction == SimCommand::Direction::kBack ? -1 : 1, by);
       break;
     case Kind::kResume:
       if (numerical_error_) {

@@ -13,8 +13,8 @@
 #include <toml++/toml.h>
 
 #include "scene/integrator_catalogue.h"
-#include "scene/scene_builder.h"
 #include "scene/scene_overrides.h"
+#include "scene/scene_reader.h"
 #include "scene/toml_reader.h"
 
 namespace periflex {
@@ -101,7 +101,7 @@ SceneDef parse_scene(std::string_view toml_text, const std::string& display_path
   // overrides change the tree, so their values are checked like the file's
   apply_overrides(root, overrides, context);
 
-  SceneDef scene = build_scene(root, context, std::filesystem::path(display_path).stem().string());
+  SceneDef scene = read_scene_tables(root, context, std::filesystem::path(display_path).stem().string());
   scene.path = display_path;
   return scene;
 }

@@ -37,7 +37,7 @@ double worker_steps_per_second(const std::string& scene, bool reactions) {
   EventLog events(false);
   SimWorker worker(simulation_model_factory(), scene, {"solver.end_time=1000"}, events);
   SimCommand ask = SimCommand::make(SimCommand::Kind::kReactions, "test");
-  ask.count = reactions ? 1 : 0;
+  ask.with_reactions = reactions;
   worker.send(ask);
   worker.start(true, 0.0);
   // the rate is measured over half-second windows: read it after two of them

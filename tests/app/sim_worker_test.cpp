@@ -170,7 +170,7 @@ TEST(SimWorker, PausedWorkerTakesExactlyTheStepsAsked) {
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
   SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.count = 5;
+  step.steps = 5;
   worker.send(step);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 5; }));
   // paused again after the five: no further steps happen
@@ -312,7 +312,7 @@ TEST(SimWorker, RecordingPublishesOneFramePerSimulatedInterval) {
   rec.number = 4e-3;
   worker.send(rec);
   SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.count = 6;
+  step.steps = 6;
   worker.send(step);
   // frames at the start (step 0) and then every 4e-3 s: steps 0 and 4 of the six
   std::vector<long> steps;
@@ -334,14 +334,14 @@ TEST(SimWorker, RecordingGoesOnFromTheStartAfterReset) {
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
   SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.count = 3;
+  step.steps = 3;
   worker.send(step);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 3; }));
   SimCommand rec = SimCommand::make(SimCommand::Kind::kRecord, "test");
   rec.number = 2e-3;
   worker.send(rec);  // first frame at step 3
   worker.send(SimCommand::make(SimCommand::Kind::kReset, "test"));  // then one at step 0
-  step.count = 2;
+  step.steps = 2;
   worker.send(step);  // and one at step 2
   std::vector<long> steps;
   const auto give_up = std::chrono::steady_clock::now() + 20s;
@@ -365,10 +365,10 @@ TEST(SimWorker, HistoryOffTakesNoStateWhileStepping) {
       worker.start(false, 0.0);
       SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
       history.number = interval;
-      history.count = 64;
+      history.history_budget_mb = 64;
       worker.send(history);
       SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-      step.count = 5000;
+      step.steps = 5000;
       worker.send(step);
       EXPECT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 5000; }));
       EXPECT_EQ(worker.status().history_interval, interval);
@@ -391,23 +391,23 @@ TEST(SimWorker, ScrubbingShowsKeptStatesAndResumeDropsTheFuture) {
   worker.start(false, 0.0);
   SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
   history.number = 0.1;
-  history.count = 64;
+  history.history_budget_mb = 64;
   worker.send(history);
   SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.count = 1050;
+  step.steps = 1050;
   worker.send(step);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 1050; }));
   // 0, 0.1, ..., 1.0: eleven states
   EXPECT_EQ(worker.status().history_states, 11u);
   SimCommand back = SimCommand::make(SimCommand::Kind::kScrubStep, "test");
-  back.count = -1;
+  back.direction = SimCommand::Direction::kBack;
   for (int k = 0; k < 3; ++k) worker.send(back);
   // the live state (1.05) kept, then three back: 0.8
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.scrub >= 0 && s.step == 800; }));
   EXPECT_EQ(worker.status().history_states, 12u);
   EXPECT_FALSE(worker.status().running);
   SimCommand forward = SimCommand::make(SimCommand::Kind::kScrubStep, "test");
-  forward.count = 1;
+  forward.direction = SimCommand::Direction::kForward;
   worker.send(forward);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 900; }));
   SimCommand to = SimCommand::make(SimCommand::Kind::kScrub, "test");

@@ -100,10 +100,10 @@ TEST(SimulationModel, ScrubbingBackAndResumingRepeatsTheRun) {
   };
   SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
   history.number = 1.7e-5;   // 42.5 steps of 4e-7 s
-  history.count = 256;
+  history.history_budget_mb = 256;
   worker.send(history);
   SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.count = 1750;  // the crack runs from about step 1600
+  step.steps = 1750;  // the crack runs from about step 1600
   worker.send(step);
   ASSERT_TRUE(wait([](const WorkerStatus& s) { return s.step == 1750; }));
   worker.update_snapshot();

@@ -64,3 +64,56 @@ TEST(PdFracture, BreaksInsideEvaluationsAreHandedOverOnce) {
 
 }  // namespace
 }  // namespace periflex
+
+namespace periflex {
+namespace {
+
+using test::affine_positions;
+using test::box;
+using test::glass_plate;
+
+TEST(PdDamage, BrokenBondsRaiseDamageAndReleaseTheirEnergy) {
+  // stretch a strip uniformly past s0: every breakable bond goes, damage -> 1, and the released
+  // energy equals the strain energy held just before (1e-12 relative: same sums)
+  FlexBodyDef def = glass_plate(0.02, 0.004, 1e-3);
+  def.material.critical_stretch = 1e-3;
+  auto body = PdBody::build(def, 0);
+  Eigen::Matrix2d h = Eigen::Matrix2d::Identity() * 2e-3;
+  const Eigen::VectorXd q = affine_positions(*body, h);
+  const double stored = body->potential_energy(q);
+  const FractureUpdate up = body->update_fracture(q);
+  EXPECT_EQ(up.bonds_broken, body->bond_count());
+  EXPECT_NEAR(up.energy_released / stored, 1.0, 1e-12);
+  std::vector<float> d;
+  body->damage(d);
+  for (float v : d) EXPECT_FLOAT_EQ(v, 1.0f);
+  EXPECT_EQ(body->potential_energy(q), 0.0);
+}
+
+TEST(PdDamage, NoFailRegionKeepsItsBonds) {
+  FlexBodyDef def = glass_plate(0.02, 0.004, 1e-3);
+  def.material.critical_stretch = 1e-3;
+  def.no_fail_regions.push_back(box(0.004, 0.004, Vec2(0.008, 0.0)));
+  auto body = PdBody::build(def, 0);
+  const Eigen::VectorXd q = affine_positions(*body, Eigen::Matrix2d::Identity() * 2e-3);
+  body->update_fracture(q);
+  std::vector<float> d;
+  body->damage(d);
+  const int inside = body->nearest_particle(Vec2(0.0085, 0.0005));
+  const int outside = body->nearest_particle(Vec2(-0.008, 0.0));
+  EXPECT_EQ(d[inside], 0.0f);
+  EXPECT_EQ(d[outside], 1.0f);
+}
+
+TEST(PdDamage, FractureOffNeverBreaks) {
+  FlexBodyDef def = glass_plate(0.02, 0.004, 1e-3);
+  def.material.critical_stretch = 1e-3;
+  def.fracture = false;
+  auto body = PdBody::build(def, 0);
+  const Eigen::VectorXd q = affine_positions(*body, Eigen::Matrix2d::Identity() * 2e-3);
+  EXPECT_EQ(body->update_fracture(q).bonds_broken, 0);
+  EXPECT_EQ(body->broken_bond_count(), 0);
+}
+
+}  // namespace
+}  // namespace periflex

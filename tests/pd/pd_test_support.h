@@ -52,6 +52,16 @@ inline FlexBodyDef glass_plate(double width, double height, double dx, double th
   return def;
 }
 
+// Uniaxial stress along x in plane stress with nu = 1/3: eps_yy = -eps / 3, W = E eps^2 / 2.
+inline Eigen::Matrix2d uniaxial(double eps) {
+  Eigen::Matrix2d h;
+  h << eps, 0.0, 0.0, -eps / 3.0;
+  return h;
+}
+
+// Index of the particle nearest the centre of a body (an interior particle).
+inline int centre_particle(const PdBody& body) { return body.nearest_particle(Vec2(1e-9, 1e-9)); }
+
 // q of the body's particles (offset 0) displaced by the affine map X -> X + H X.
 inline Eigen::VectorXd affine_positions(const PdBody& body, const Eigen::Matrix2d& h) {
   const std::vector<double>& x = body.reference_positions();

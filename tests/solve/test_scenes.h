@@ -62,4 +62,24 @@ inline SceneDef double_pendulum(const std::string& integrator, double dt, Correc
   return s;
 }
 
+
+// A small elastic plate (1 cm square, 1 mm spacing), drifting at 0.1 m/s without gravity, so the
+// explicit stability bound applies to every live change.
+inline SceneDef small_plate(double dt) {
+  SceneDef scene = empty_scene("verlet", dt, CorrectionDef::Method::kNone);
+  scene.gravity = Vec2::Zero();
+  FlexBodyDef plate;
+  plate.name = "plate";
+  plate.shape.kind = ShapeDef::Kind::kBox;
+  plate.shape.width = plate.shape.height = 0.01;
+  plate.grid_spacing = 1e-3;
+  plate.thickness = 1e-3;
+  plate.material.youngs_modulus = 1e9;
+  plate.material.density = 1000.0;
+  plate.material.critical_stretch = 0.01;
+  plate.velocity = Vec2(0.1, 0.0);
+  scene.flex_bodies.push_back(plate);
+  return scene;
+}
+
 }  // namespace periflex::test

@@ -13,7 +13,9 @@
 
 namespace periflex {
 
-// `default_name` is the scene name used when [scene] name is absent (the file stem).
-SceneDef build_scene(const toml::table& root, const ReadContext& context, const std::string& default_name);
+// `default_name` is the scene name used when [scene] name is absent (the file stem). The sections'
+// readers: scene_reader.cpp, solver_sections.cpp, mechanism_sections.cpp, flex_body_section.cpp,
+// coupling_sections.cpp (sharing scene_table_reader.h).
+SceneDef read_scene_tables(const toml::table& root, const ReadContext& context, const std::string& default_name);
 
 }  // namespace periflex

@@ -1,5 +1,5 @@
-// Model analysis at set-up: redundant constraints, inconsistent initial conditions, bodies
-// whose motion nothing determines, and the list of active modules.
+// The model report at set-up (src/solve/model_report.cpp): redundant constraints, bodies whose
+// motion nothing determines, and the list of active modules.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -72,25 +72,6 @@ TEST(Redundancy, ParallelogramWithExtraLinkReportsOneRedundantEquation) {
   // both integrate the same smooth motion with RK4 at dt = 1e-3 and project to 1e-10
   EXPECT_LT(worst, 1e-8);
   EXPECT_GT(std::abs(plain.sample().probe_values[2]), 0.1);  // it moved
-}
-
-TEST(InitialConditions, InconsistentPositionsAndVelocitiesAreProjectedAndReported) {
-  // the bob starts 1 cm too far out along the rod, moving partly along the rod
-  SceneDef scene = test::point_pendulum(1.0, kPi / 2, "rk4", 1e-3);
-  scene.bodies[0].position.x() += 0.01;
-  scene.bodies[0].velocity = Vec2(0.3, -1.0);
-  Simulation sim(scene);
-  sim.initialize();
-  const Sample s = sim.sample();
-  EXPECT_LT(s.violation_position, 1e-10);
-  EXPECT_LT(s.violation_velocity, 1e-10);
-  // the mass-weighted least change moves the bob back by the 1 cm (phi is nearly free: zero inertia)
-  EXPECT_NEAR(sim.info().initial_position_correction, 0.01, 1e-6);
-  // the radial 0.3 m/s is removed, the tangential -1 m/s is kept
-  EXPECT_GE(sim.info().initial_velocity_correction, 0.3 - 1e-9);
-  // m v^2 = 1 * 1^2; the zero-inertia angle carries a weight of 1e-6 of the reference mass in
-  // the projection, so the kept speed is exact to that relative order
-  EXPECT_NEAR(2.0 * s.energies.kinetic, 1.0, 1e-5);
 }
 
 TEST(Determinacy, MasslessFreeBodyIsRejectedByName) {
@@ -171,21 +152,6 @@ TEST(Modules, ConstrainedSceneListsConstraintSolverAndForceElements) {
   EXPECT_TRUE(has(sim.info().active_modules, "constraint_solver"));
   EXPECT_TRUE(has(sim.info().active_modules, "force_elements"));
   EXPECT_EQ(sim.info().force_elements, 1);
-}
-
-TEST(Snapshot, ListsGroundFirstAndMarkersForJoints) {
-  Simulation sim(test::double_pendulum("rk4", 1e-3, CorrectionDef::Method::kBaumgarte));
-  sim.initialize();
-  Snapshot snap;
-  sim.fill_snapshot(snap);
-  ASSERT_TRUE(snap.geometry);
-  ASSERT_EQ(snap.geometry->bodies.size(), 3u);
-  EXPECT_TRUE(snap.geometry->bodies[0].ground);
-  EXPECT_EQ(snap.bodies.size(), 3u);
-  ASSERT_EQ(snap.markers.size(), 2u);
-  // the elbow sits at the tip of the upper bar: (1, 0) at rest
-  EXPECT_NEAR(snap.markers[1].a.x(), 1.0, 1e-12);
-  EXPECT_NEAR(snap.markers[1].a.y(), 0.0, 1e-12);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "app/view_fit.h"
 #include "app/widget_dump.h"
 #include "render/camera.h"
+#include "io/background_frame_writer.h"
 #include "io/frame_writer.h"
 #include "io/image.h"
 #include "render/renderer.h"
@@ -211,7 +212,7 @@ class GuiApp {
   char record_path_[512] = "frames";
   double record_interval_ = 0.0;
   float record_fps_ = 30.0f;
-  std::unique_ptr<FrameWriter> writer_;
+  std::unique_ptr<BackgroundFrameWriter> writer_;
   unsigned fbo_ = 0, color_rbo_ = 0;
   Camera record_camera_;
   PlotHistory record_rows_;         // the recorded frames' series rows, for the plot over them

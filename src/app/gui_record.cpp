@@ -2,7 +2,7 @@
 // interval; the main thread draws each, with the overlay a screenshot shows (scene name, time,
 // colour legend) but without the panels, into an off-screen framebuffer of the window's size and
 // hands the pixels to a frame writer (PNG sequence, or a movie through ffmpeg in the format its
-// extension names: io/movie_format.h).
+// extension names: io/movie_format.h) that writes on its own thread (io/background_frame_writer.h).
 #include <algorithm>
 #include <exception>
 #include <stdexcept>
@@ -19,6 +19,9 @@ namespace {
 
 // recorded frames drawn per window frame, so recording never stalls the interface for long
 constexpr int kRecordedPerFrame = 4;
+// frames drawn and waiting for the encoder's thread (4 MB each at 1280x800): when they are all
+// taken, the simulation waits for the encoder, the window does not
+constexpr size_t kFramesToEncoder = 2;
 
 }  // namespace
 
@@ -42,9 +45,10 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
         log_.add("recording: " + record_message_);
         return;
       }
-      writer_ = std::make_unique<MovieWriter>(path, record_width_, record_height_, std::max(1.0, fps));
+      writer_ = std::make_unique<BackgroundFrameWriter>(
+          std::make_unique<MovieWriter>(path, record_width_, record_height_, std::max(1.0, fps)), kFramesToEncoder);
     } else {
-      writer_ = std::make_unique<PngSequenceWriter>(path);
+      writer_ = std::make_unique<BackgroundFrameWriter>(std::make_unique<PngSequenceWriter>(path), kFramesToEncoder);
     }
   } catch (const std::exception& e) {
     record_message_ = e.what();
@@ -146,7 +150,7 @@ void GuiApp::write_recorded_frame(const Snapshot& frame, FrameWriter& writer) {
 void GuiApp::pump_recording() {
   if (!writer_) return;
   Snapshot frame;
-  for (int n = 0; n < kRecordedPerFrame && worker_.take_recorded(frame); ++n) {
+  for (int n = 0; n < kRecordedPerFrame && writer_->ready() && worker_.take_recorded(frame); ++n) {
     try {
       write_recorded_frame(frame, *writer_);
     } catch (const std::exception& e) {
@@ -166,7 +170,7 @@ void GuiApp::stop_recording() {
   c.number = 0.0;
   send(c);
   // frames already published are still written
-  std::unique_ptr<FrameWriter> writer = std::move(writer_);
+  std::unique_ptr<BackgroundFrameWriter> writer = std::move(writer_);
   Snapshot frame;
   try {
     while (worker_.take_recorded(frame)) write_recorded_frame(frame, *writer);

@@ -8,27 +8,13 @@
 #include <random>
 
 #include "scene/grid_scan.h"
+#include "test_shapes.h"
 
 namespace periflex {
 namespace {
 
-ShapeDef box(Vec2 c, double w, double h, double angle = 0.0) {
-  ShapeDef s;
-  s.kind = ShapeDef::Kind::kBox;
-  s.center = c;
-  s.width = w;
-  s.height = h;
-  s.angle = angle;
-  return s;
-}
-
-ShapeDef circle(Vec2 c, double r) {
-  ShapeDef s;
-  s.kind = ShapeDef::Kind::kCircle;
-  s.center = c;
-  s.radius = r;
-  return s;
-}
+using test::box;
+using test::circle;
 
 ShapeDef polygon(std::vector<Vec2> v) {
   ShapeDef s;

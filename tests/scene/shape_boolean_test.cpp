@@ -6,27 +6,13 @@
 #include "scene/scene_loader.h"
 #include "scene/shape_boolean.h"
 #include "scene/shape_reader.h"
+#include "test_shapes.h"
 
 namespace periflex {
 namespace {
 
-ShapeDef box(Vec2 c, double w, double h, double angle = 0.0) {
-  ShapeDef s;
-  s.kind = ShapeDef::Kind::kBox;
-  s.center = c;
-  s.width = w;
-  s.height = h;
-  s.angle = angle;
-  return s;
-}
-
-ShapeDef circle(Vec2 c, double r) {
-  ShapeDef s;
-  s.kind = ShapeDef::Kind::kCircle;
-  s.center = c;
-  s.radius = r;
-  return s;
-}
+using test::box;
+using test::circle;
 
 ShapeDef combine(ShapeDef::Combine how, std::vector<ShapeDef> operands) {
   ShapeDef s;

@@ -1,0 +1,26 @@
+// Shapes for the scene tests, built in code: a box, a circle.
+#pragma once
+
+#include "scene/scene_def.h"
+
+namespace periflex::test {
+
+inline ShapeDef box(Vec2 c, double w, double h, double angle = 0.0) {
+  ShapeDef s;
+  s.kind = ShapeDef::Kind::kBox;
+  s.center = c;
+  s.width = w;
+  s.height = h;
+  s.angle = angle;
+  return s;
+}
+
+inline ShapeDef circle(Vec2 c, double r) {
+  ShapeDef s;
+  s.kind = ShapeDef::Kind::kCircle;
+  s.center = c;
+  s.radius = r;
+  return s;
+}
+
+}  // namespace periflex::test

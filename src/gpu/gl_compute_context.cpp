@@ -1,8 +1,6 @@
 #include "gpu/gl_compute_context.h"
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
 
 #include "render/gl.h"
@@ -22,42 +20,17 @@ EglContext make_compute_context() {
 
 }  // namespace
 
-unsigned load_compute_program(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("cannot read shader " + path + " (is PERIFLEX_ROOT right?)");
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string source = text.str();
-  const char* chars = source.c_str();
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  glShaderSource(shader, 1, &chars, nullptr);
-  glCompileShader(shader);
-  GLint ok = 0;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {0};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    glDeleteShader(shader);
-    throw std::runtime_error("compute shader " + path + " does not compile (does the driver have fp64?):\n" + log);
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glLinkProgram(program);
-  glDeleteShader(shader);
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {0};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw std::runtime_error("compute shader " + path + " does not link:\n" + log);
-  }
-  return program;
-}
-
 GlComputeContext::GlComputeContext(const std::string& resource_root) : egl_(make_compute_context()) {
   EglContext::Scope current(egl_);
   const auto path = std::filesystem::path(resource_root) / "shaders" / "pd_bond_forces.comp";
-  bond_force_program_ = load_compute_program(path.string());
+  // a shader that does not compile here most often meets a driver without fp64 in its GLSL
+  try {
+    bond_force_program_ = load_compute_program(path.string());
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    if (what.find("does not compile") == std::string::npos) throw;
+    throw std::runtime_error(what + "\n(does the driver have fp64?)");
+  }
   description_ = "OpenGL compute fp64; " + egl_.description();
   // current on no thread between passes: each pass takes it on the thread it runs on
   egl_.release();

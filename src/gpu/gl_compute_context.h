@@ -30,8 +30,4 @@ class GlComputeContext {
   std::string description_;
 };
 
-// Compiles and links one compute shader file; throws std::runtime_error with the path and the
-// driver's log when it does not compile or link.
-unsigned load_compute_program(const std::string& path);
-
 }  // namespace periflex

@@ -1,6 +1,7 @@
 #include "render/gl.h"
 
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 
@@ -33,6 +34,23 @@ GLuint compile(GLenum type, const std::string& path) {
   return shader;
 }
 
+// Links the compiled shaders (deleting them) into a program; `what` names them in the error.
+GLuint link(std::initializer_list<GLuint> shaders, const std::string& what) {
+  GLuint program = glCreateProgram();
+  for (GLuint shader : shaders) glAttachShader(program, shader);
+  glLinkProgram(program);
+  for (GLuint shader : shaders) glDeleteShader(shader);
+  GLint ok = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (!ok) {
+    char log[2048] = {0};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    glDeleteProgram(program);
+    throw std::runtime_error(what + " do not link:\n" + log);
+  }
+  return program;
+}
+
 }  // namespace
 
 GLuint load_program(const std::string& vertex_path, const std::string& fragment_path) {
@@ -44,21 +62,11 @@ GLuint load_program(const std::string& vertex_path, const std::string& fragment_
     glDeleteShader(vs);
     throw;
   }
-  GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = 0;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {0};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    glDeleteProgram(program);
-    throw std::runtime_error("shaders " + vertex_path + " + " + fragment_path + " do not link:\n" + log);
-  }
-  return program;
+  return link({vs, fs}, "shaders " + vertex_path + " + " + fragment_path);
+}
+
+GLuint load_compute_program(const std::string& path) {
+  return link({compile(GL_COMPUTE_SHADER, path)}, "compute shader " + path);
 }
 
 void check_gl(const char* where) {

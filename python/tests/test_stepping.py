@@ -18,6 +18,25 @@ def test_step_counts_and_times(pendulum):
     assert pendulum.time == pytest.approx(10 * 1e-3, rel=1e-12)  # the clock: origin + steps * dt
 
 
+def test_step_takes_its_count_as_pybind11_methods_take_theirs(pendulum):
+    # step is a method of the fast calling convention: the same signature, keyword and refusals
+    # as the module's other methods
+    import inspect
+    assert str(inspect.signature(pendulum.step)) == "(n=1)"
+    assert "Take n steps of dt" in periflex.Simulation.step.__doc__
+    pendulum.step(n=3)
+    pendulum.step(True)  # an int, as Python counts it
+    assert pendulum.steps == 4
+    for args, kwargs, error in [((1.5,), {}, TypeError), (("2",), {}, TypeError), ((1, 2), {}, TypeError),
+                                ((), {"m": 1}, TypeError), ((1,), {"n": 1}, TypeError), ((-1,), {}, ValueError),
+                                ((2**70,), {}, OverflowError)]:
+        with pytest.raises(error):
+            pendulum.step(*args, **kwargs)
+    assert pendulum.steps == 4
+    with pytest.raises(TypeError):
+        periflex.Simulation.step(3)  # not a simulation
+
+
 def test_advance_to_lands_exactly_on_a_time_the_step_does_not_divide(pendulum):
     pendulum.advance_to(0.0105)  # 10.5 steps of 1 ms
     assert pendulum.time == 0.0105

@@ -11,6 +11,7 @@
 #include "python/py_commands.h"
 #include "python/py_render.h"
 #include "python/py_simulation.h"
+#include "python/py_step_method.h"
 #include "solve/simulation.h"
 
 namespace py = pybind11;
@@ -106,17 +107,14 @@ PYBIND11_MODULE(_periflex, m) {
   m.def("render_available", &pyrender::available, "True when this build draws pictures (Simulation.render).");
   m.def("integrator_names", &integrator_names, "The integrators this build offers (solver.integrator).");
 
-  py::class_<PySimulation>(m, "_Simulation", "The compiled simulation; periflex.Simulation wraps it.")
+  py::class_<PySimulation> simulation(m, "_Simulation", "The compiled simulation; periflex.Simulation wraps it.");
+  pystep::bind(simulation);
+  simulation
       .def(py::init([](const std::string& path, const std::string& text, const std::string& display_name,
                        const std::vector<std::string>& overrides) {
              return new PySimulation(make_source(path, text, display_name), overrides);
            }),
            py::arg("path"), py::arg("text"), py::arg("display_name"), py::arg("overrides"))
-      .def("step", &PySimulation::step, py::arg("n") = 1,
-           "Take n steps of dt (several sub-steps each when solver.auto_substep needs them).\n\n"
-           "Other Python threads run meanwhile. Ctrl-C raises KeyboardInterrupt between two steps; "
-           "the simulation stays usable and its time tells how far it got. Raises NumericalError "
-           "with the program's diagnostic when the solution fails.")
       .def("advance_to", &PySimulation::advance_to, py::arg("t"),
            "Step up to exactly time t [s], the last step shortened to land on it (as the program's "
            "output instants). Interruptible like step().")

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "contact/shape_distance.h"
+
 namespace periflex {
 
 namespace {
@@ -56,13 +58,6 @@ double separation_along_length(const std::vector<Vec2>& core, const std::vector<
     before_start = std::min(before_start, -d.dot(w - core[0]));
   }
   return std::max(beyond_end, before_start);
-}
-
-Vec2 nearest_on_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return a + s * ab;
 }
 
 // The nearest points of two cores that do not overlap (pa on a, pb on b): the nearest pair over

@@ -11,7 +11,7 @@ namespace periflex {
 
 namespace {
 // Particles per chunk of the parallel passes.
-constexpr int kChunkParticles = 2048;
+constexpr int kPairChunkParticles = 2048;
 // Contacts assumed on the lightest particle for the critical step: about two neighbours across
 // a contact face, each in relative motion (twice the stiffness of a fixed wall).
 constexpr double kContactsPerParticle = 4.0;
@@ -116,14 +116,14 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
                                              Eigen::VectorXd* g, std::vector<ContactPoint>* points) const {
   refresh(q);
   const int n = static_cast<int>(coordinate_.size());
-  const int chunks = (n + kChunkParticles - 1) / kChunkParticles;
+  const int chunks = (n + kPairChunkParticles - 1) / kPairChunkParticles;
   const double k = stiffness_, d = distance_;
   std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
 #pragma omp parallel for schedule(dynamic, 1) if (chunks > 1 && points == nullptr)
   for (int c = 0; c < chunks; ++c) {
     Sums& s = partial[c];
-    const int end = std::min(n, (c + 1) * kChunkParticles);
-    for (int a = c * kChunkParticles; a < end; ++a) {
+    const int end = std::min(n, (c + 1) * kPairChunkParticles);
+    for (int a = c * kPairChunkParticles; a < end; ++a) {
       const int xa = coordinate_[a];
       const uint8_t* broken = bodies_[body_of_[a]]->bonds().broken.data();
       double fx = 0.0, fy = 0.0;

@@ -12,7 +12,7 @@ namespace periflex {
 
 namespace {
 // Particles per chunk of the parallel pass.
-constexpr int kChunkParticles = 2048;
+constexpr int kShapeChunkParticles = 2048;
 }  // namespace
 
 RigidParticleContact::RigidParticleContact(const ContactDef& def, int body, double body_mass,
@@ -50,13 +50,13 @@ RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q,
   const double k = stiffness_, mu = def_.friction, v_reg = def_.friction_velocity;
 
   const int n = static_cast<int>(mass_.size());
-  const int chunks = (n + kChunkParticles - 1) / kChunkParticles;
+  const int chunks = (n + kShapeChunkParticles - 1) / kShapeChunkParticles;
   std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
 #pragma omp parallel for schedule(dynamic, 1) if (chunks > 1 && points == nullptr)
   for (int c = 0; c < chunks; ++c) {
     Sums& s = partial[c];
-    const int end = std::min(n, (c + 1) * kChunkParticles);
-    for (int i = c * kChunkParticles; i < end; ++i) {
+    const int end = std::min(n, (c + 1) * kShapeChunkParticles);
+    for (int i = c * kShapeChunkParticles; i < end; ++i) {
       if (excluded_[i]) continue;
       const int x = offset_ + 2 * i;
       const Vec2 p(q[x], q[x + 1]);

@@ -14,14 +14,6 @@ Vec2 unit_or(const Vec2& d, const Vec2& fallback) {
   return length > 0.0 ? Vec2(d / length) : fallback;
 }
 
-// Nearest point of the segment [a, b] to p.
-Vec2 nearest_on_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
-  const Vec2 ab = b - a;
-  const double len2 = ab.squaredNorm();
-  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
-  return a + s * ab;
-}
-
 ShapeDistance box_distance(const ShapeDef& shape, const Vec2& p) {
   // in the box frame: q = |local| - half extents; outside the corner region the largest q decides
   const Vec2 local = rotation(-shape.angle) * (p - shape.center);

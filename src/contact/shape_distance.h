@@ -4,6 +4,7 @@
 // k (margin - distance) normal pushes a particle out along the shortest way.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "core/vec2.h"
@@ -21,6 +22,15 @@ ShapeDistance signed_distance(const ShapeDef& shape, const Vec2& p);
 
 // Whether the polygon (vertices counter-clockwise) is convex: no vertex turns clockwise.
 bool is_convex(const std::vector<Vec2>& vertices);
+
+// Nearest point of the segment [a, b] to p (a when the segment is a point). Inline: the contact
+// passes call it per particle and per edge.
+inline Vec2 nearest_on_segment(const Vec2& p, const Vec2& a, const Vec2& b) {
+  const Vec2 ab = b - a;
+  const double len2 = ab.squaredNorm();
+  const double s = len2 > 0.0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+  return a + s * ab;
+}
 
 // A circle (centre, radius) enclosing the shape, in the shape's frame: the cheap test before
 // the exact distance.

@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "run_program.h"
+#include "support/json_text.h"
 
 namespace periflex::testing {
 namespace {
@@ -123,7 +124,7 @@ TEST(CommandLine, RunWritesSeriesAndSummary) {
   for (const auto& row : rows)
     for (double v : row) EXPECT_TRUE(std::isfinite(v));
 
-  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  const auto summary = testing::parse_json(read_text(out / "summary.json"));
   EXPECT_EQ(summary["status"], "ok");
   EXPECT_EQ(summary["exit_code"], 0);
   EXPECT_GT(summary["steps"].get<long>(), 0);
@@ -137,7 +138,7 @@ TEST(CommandLine, SetOverridesChangeTheRun) {
   const auto r = run_periflex("run " + scene("pendulum.toml") + " --set solver.end_time=0.2 --quiet --out " +
                               out.string());
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  const auto summary = testing::parse_json(read_text(out / "summary.json"));
   EXPECT_NEAR(summary["simulated_time"].get<double>(), 0.2, 1e-9);
 }
 
@@ -166,7 +167,7 @@ TEST(CommandLine, KilledRunLeavesCompleteRowsAndValidSummary) {
   std::vector<std::string> header;
   const auto rows = parse_csv(text, header);
   EXPECT_GE(rows.size(), 2u);
-  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));  // throws if invalid
+  const auto summary = testing::parse_json(read_text(out / "summary.json"));  // throws if invalid
   EXPECT_EQ(summary["status"], "running");
 }
 

@@ -10,13 +10,14 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <regex>
 #include <string>
 #include <vector>
 
 #include "child_run.h"
 #include "run_output_files.h"
 #include "run_program.h"
+#include "support/sanitizer_build.h"
+#include "support/text_match.h"
 
 namespace periflex::testing {
 namespace {
@@ -30,7 +31,7 @@ struct DocumentedCommand {
 
 // The commands of the fenced code blocks of one Markdown file.
 void commands_of(const fs::path& file, std::vector<DocumentedCommand>& out) {
-  static const std::regex program_command(R"(^periflex (run|check|sweep|study)\b)");
+  const char* program_command = R"(^periflex (run|check|sweep|study)\b)";
   std::ifstream in(file);
   bool fenced = false;
   std::string line, pending;
@@ -45,7 +46,7 @@ void commands_of(const fs::path& file, std::vector<DocumentedCommand>& out) {
     }
     if (!fenced) continue;
     if (pending.empty()) {
-      if (!std::regex_search(text, program_command)) continue;
+      if (!testing::contains_match(text, program_command)) continue;
       start = number;
     }
     // a trailing backslash continues the command on the next line
@@ -81,7 +82,7 @@ bool draws(const std::string& command) {
 #endif
 
 TEST(DocumentedCommands, EveryOneRunsAsTypedToExitZero) {
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if PERIFLEX_UNDER_SANITIZER
   GTEST_SKIP() << "full runs of the shipped scenes: the optimised build runs them";
 #endif
   const std::vector<DocumentedCommand> commands = documented_commands();

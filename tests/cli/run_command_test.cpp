@@ -5,13 +5,13 @@
 
 #include <cmath>
 #include <csignal>
-#include <regex>
 #include <thread>
 
 #include "child_run.h"
 #include "run_output_files.h"
 #include "run_program.h"
 #include "study/elliptic.h"
+#include "support/text_match.h"
 
 namespace periflex::testing {
 namespace {
@@ -407,8 +407,8 @@ TEST(RunCommand, ClosingLineAndSummaryAgree) {
   const auto r = run_child({"run", scene("double_pendulum.toml"), "--out", out.string(), "--quiet"}, kLimit);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto summary = read_summary(out / "summary.json");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(r.output, m, std::regex(R"(([0-9]+) steps/s)"))) << r.output;
+  const auto m = testing::first_match(r.output, R"(([0-9]+) steps/s)");
+  ASSERT_FALSE(m.empty()) << r.output;
   EXPECT_NEAR(std::stod(m[1]), summary["steps_per_second"].get<double>(), 0.5);
   ASSERT_TRUE(summary.contains("solver_cpu_time"));
   EXPECT_GT(summary["solver_cpu_time"].get<double>(), 0.0);

@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "support/json_text.h"
+
 namespace periflex::testing {
 
 struct Series {
@@ -74,10 +76,7 @@ inline Series read_series(const std::filesystem::path& path) {
   return s;
 }
 
-inline nlohmann::json read_summary(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  return nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-}
+inline nlohmann::json read_summary(const std::filesystem::path& path) { return read_json_file(path); }
 
 // The files of a folder with that extension (".png"), sorted by name; none for a missing folder.
 inline std::vector<std::filesystem::path> files_with_extension(const std::filesystem::path& dir,

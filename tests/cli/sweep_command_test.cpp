@@ -13,6 +13,7 @@
 
 #include "child_run.h"
 #include "run_program.h"
+#include "support/sanitizer_build.h"
 
 namespace periflex::testing {
 namespace {
@@ -22,7 +23,7 @@ namespace fs = std::filesystem;
 // Each run gets an address-space cap (memory_gb, 4 GB by default). A sanitizer build reserves
 // terabytes of address space for its shadow memory and dies under that cap, so there the sweeps
 // give their runs 100 TB instead; everything else is the same.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if PERIFLEX_UNDER_SANITIZER
 const char* kMemoryLine = "memory_gb = 100000\n";
 #else
 const char* kMemoryLine = "";

@@ -9,6 +9,7 @@
 
 #include "../cli/run_program.h"
 #include "io/image.h"
+#include "support/json_text.h"
 
 namespace periflex::testing {
 namespace {
@@ -31,7 +32,7 @@ TEST(Recording, FrameCountIsFloorOfEndOverIntervalPlusOneWithoutGaps) {
     EXPECT_EQ(frame.width, 96);
     EXPECT_EQ(frame.height, 64);
   }
-  const auto summary = nlohmann::json::parse(read_text(out / "summary.json"));
+  const auto summary = testing::parse_json(read_text(out / "summary.json"));
   EXPECT_EQ(summary["frames_written"].get<long>(), count);
 }
 

@@ -10,7 +10,6 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <regex>
 #include <string>
 #include <vector>
 
@@ -19,6 +18,8 @@
 #include "scene/scene_budget.h"
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"
+#include "support/text_match.h"
+#include "support/sanitizer_build.h"
 
 namespace periflex {
 namespace {
@@ -51,11 +52,7 @@ struct MemoryCase {
 
 // Sanitizers add shadow memory and keep freed blocks in quarantine: the peak is theirs, not the
 // program's.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr bool kUnderSanitizer = true;
-#else
-constexpr bool kUnderSanitizer = false;
-#endif
+constexpr bool kUnderSanitizer = PERIFLEX_UNDER_SANITIZER;
 
 TEST(SceneBudget, MemoryEstimateIsWithinOneAndAHalfOfThePeakOfTheRun) {
   if (kUnderSanitizer) GTEST_SKIP() << "peak memory under a sanitizer is not the program's";
@@ -106,9 +103,9 @@ TEST(SceneBudget, BondCountIsExactOnASliverAndAPlate) {
 
 // The count in "series.csv would get N rows, more than limits.max_output_rows = M", or -1.
 long refused_rows(const std::string& output) {
-  std::smatch m;
-  static const std::regex pattern("series\\.csv would get ([0-9]+) rows, more than limits\\.max_output_rows = ([0-9]+);");
-  return std::regex_search(output, m, pattern) ? std::stol(m[1]) : -1;
+  const auto m = testing::first_match(
+      output, "series\\.csv would get ([0-9]+) rows, more than limits\\.max_output_rows = ([0-9]+);");
+  return m.empty() ? -1 : std::stol(m[1]);
 }
 
 // The report's case: the pendulum to 10000 s, a row every 0.01 s, writes rows at 0, 0.01, ...,

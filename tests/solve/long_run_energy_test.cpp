@@ -10,13 +10,14 @@
 #include "core/error.h"
 #include "solve/simulation.h"
 #include "test_scenes.h"
+#include "support/sanitizer_build.h"
 
 namespace periflex {
 namespace {
 
 // 10^6 steps of 4 ms (4000 s, about 2000 swings) for every integrator and correction; a
 // sanitizer build, some twenty times slower, runs the first tenth (the bounds are the same).
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#if PERIFLEX_UNDER_SANITIZER
 constexpr long kLongRun = 100000;
 #else
 constexpr long kLongRun = 1000000;

@@ -13,17 +13,9 @@
 
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"
+#include "support/sanitizer_build.h"
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define PERIFLEX_COUNT_ALLOCATIONS 0
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer)
-#define PERIFLEX_COUNT_ALLOCATIONS 0
-#endif
-#endif
-#ifndef PERIFLEX_COUNT_ALLOCATIONS
-#define PERIFLEX_COUNT_ALLOCATIONS 1
-#endif
+#define PERIFLEX_COUNT_ALLOCATIONS (!PERIFLEX_UNDER_SANITIZER)
 
 namespace {
 std::atomic<bool> counting{false};

@@ -8,10 +8,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <regex>
 
 #include "io/child_process.h"
 #include "stability/stability_suite.h"
+#include "support/text_match.h"
 
 namespace periflex {
 
@@ -71,9 +71,8 @@ TEST(AbsurdSize, RefusalStatesTheParticleCount) {
                            limits);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   bool count_found = false;
-  const std::regex number(R"([0-9]+(\.[0-9]+)?([eE][+]?[0-9]+)?)");
-  for (auto it = std::sregex_iterator(r.output.begin(), r.output.end(), number); it != std::sregex_iterator(); ++it) {
-    const double v = std::strtod(it->str().c_str(), nullptr);
+  for (const std::string& number : testing::all_matches(r.output, R"([0-9]+(\.[0-9]+)?([eE][+]?[0-9]+)?)")) {
+    const double v = std::strtod(number.c_str(), nullptr);
     // the estimate may count the grid's rows and columns (4000 x 10000 cells, +/- a row): within 1 %
     if (std::abs(v - 4e13) < 0.01 * 4e13) count_found = true;
   }

@@ -24,13 +24,7 @@ GlComputeContext::GlComputeContext(const std::string& resource_root) : egl_(make
   EglContext::Scope current(egl_);
   const auto path = std::filesystem::path(resource_root) / "shaders" / "pd_bond_forces.comp";
   // a shader that does not compile here most often meets a driver without fp64 in its GLSL
-  try {
-    bond_force_program_ = load_compute_program(path.string());
-  } catch (const std::runtime_error& e) {
-    const std::string what = e.what();
-    if (what.find("does not compile") == std::string::npos) throw;
-    throw std::runtime_error(what + "\n(does the driver have fp64?)");
-  }
+  bond_force_program_ = load_compute_program(path.string(), "\n(does the driver have fp64?)");
   description_ = "OpenGL compute fp64; " + egl_.description();
   // current on no thread between passes: each pass takes it on the thread it runs on
   egl_.release();

@@ -35,11 +35,8 @@ bool read_count(PyObject* const* args, Py_ssize_t nargs, PyObject* kwnames, long
     n = 1;
     return true;
   }
-  // whole numbers only, as pybind11 takes them for a C++ long: a float is refused, not cut
-  if (PyFloat_Check(value)) {
-    PyErr_SetString(PyExc_TypeError, "step(): n must be an int, not float");
-    return false;
-  }
+  // whole numbers only (__index__), as pybind11 takes them for a C++ long: a float or a string
+  // raises TypeError, not a cut value
   n = PyLong_AsLong(value);
   return !(n == -1 && PyErr_Occurred());
 }

@@ -17,7 +17,8 @@ std::string read_text(const std::string& path) {
   return ss.str();
 }
 
-GLuint compile(GLenum type, const std::string& path) {
+// `hint` follows the driver's log when the shader does not compile.
+GLuint compile(GLenum type, const std::string& path, const std::string& hint = "") {
   const std::string source = read_text(path);
   const char* text = source.c_str();
   GLuint shader = glCreateShader(type);
@@ -29,7 +30,7 @@ GLuint compile(GLenum type, const std::string& path) {
     char log[2048] = {0};
     glGetShaderInfoLog(shader, sizeof log, nullptr, log);
     glDeleteShader(shader);
-    throw std::runtime_error("shader " + path + " does not compile:\n" + log);
+    throw std::runtime_error("shader " + path + " does not compile:\n" + log + hint);
   }
   return shader;
 }
@@ -65,8 +66,8 @@ GLuint load_program(const std::string& vertex_path, const std::string& fragment_
   return link({vs, fs}, "shaders " + vertex_path + " + " + fragment_path);
 }
 
-GLuint load_compute_program(const std::string& path) {
-  return link({compile(GL_COMPUTE_SHADER, path)}, "compute shader " + path);
+GLuint load_compute_program(const std::string& path, const std::string& compile_hint) {
+  return link({compile(GL_COMPUTE_SHADER, path, compile_hint)}, "compute shader " + path);
 }
 
 void check_gl(const char* where) {

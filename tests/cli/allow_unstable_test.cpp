@@ -14,14 +14,14 @@
 namespace periflex::testing {
 namespace {
 
-constexpr double kLimit = 120.0;
+constexpr double kUnstableRunSeconds = 120.0;
 
 TEST(AllowUnstable, NotchedPlatePastTheStableStepDivergesWithTheDiagnostic) {
   const auto out = fresh_directory("allow_unstable");
   // 6.15e-5 s is 100 times the plate's critical step; 2e-3 s is 32.5 such steps
   const auto r = run_child({"run", scene("notched_plate.toml"), "--dt", "6.15e-5", "--allow-unstable", "--until",
                             "2e-3", "--out", out.string(), "--quiet"},
-                           kLimit);
+                           kUnstableRunSeconds);
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 3) << r.output;
   // the diagnostic names the quantity that grew, and says the step was past the limit on purpose
@@ -51,7 +51,7 @@ TEST(AllowUnstable, WithoutTheFlagTheStepIsRefusedUpFront) {
   const auto out = fresh_directory("allow_unstable_refused");
   const auto r = run_child(
       {"run", scene("notched_plate.toml"), "--dt", "6.15e-5", "--until", "2e-3", "--out", out.string(), "--quiet"},
-      kLimit);
+      kUnstableRunSeconds);
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--dt"), std::string::npos) << r.output;
@@ -62,7 +62,7 @@ TEST(AllowUnstable, FlagWithAutoSubstepIsRefused) {
   const auto r = run_child({"run", scene("notched_plate.toml"), "--allow-unstable", "--set",
                             "solver.auto_substep=true", "--until", "1e-5", "--out",
                             fresh_directory("allow_unstable_substep").string(), "--quiet"},
-                           kLimit);
+                           kUnstableRunSeconds);
   ASSERT_FALSE(r.timed_out) << r.output;
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("allow_unstable"), std::string::npos) << r.output;

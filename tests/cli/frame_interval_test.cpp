@@ -14,7 +14,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kLimit = 180.0;
+constexpr double kFrameRunSeconds = 180.0;
 
 // The frames the default interval gives: k * interval for k = 0, 1, ... up to the end, the
 // interval being max(1, floor(end / 100 / dt)) steps.
@@ -38,7 +38,7 @@ TEST(FrameInterval, DefaultOnARunShorterThanAHundredStepsIsOneStepNotARefusal) {
     const fs::path movie = dir / "m.mp4";
     const auto r = run_child({"run", scene(c.scene), "--until", c.until, "--movie", movie.string(), "--size", "96x64",
                               "--quiet", "--out", (dir / "run").string()},
-                             kLimit);
+                             kFrameRunSeconds);
     ASSERT_EQ(r.exit_code, 0) << c.scene << ": " << r.output;
     const long expected = default_frames(c.end, c.dt);
     EXPECT_EQ(expected, static_cast<long>(std::floor(c.end / c.dt + 1e-9)) + 1) << "one frame per step";
@@ -49,7 +49,7 @@ TEST(FrameInterval, DefaultOnARunShorterThanAHundredStepsIsOneStepNotARefusal) {
   const auto dir = fresh_directory("typed_frame_every");
   const auto r = run_child({"run", scene("pendulum.toml"), "--until", "0.01", "--render", "--frame-every", "3e-4",
                             "--quiet", "--out", dir.string()},
-                           kLimit);
+                           kFrameRunSeconds);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--frame-every"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("0.0003"), std::string::npos) << r.output;
@@ -66,9 +66,9 @@ TEST(FrameInterval, DefaultIsWholeStepsSoFramesCutNoStep) {
   plain.insert(plain.end(), {"--out", (dir / "plain").string()});
   drawn.insert(drawn.end(), {"--render", "--size", "64x48", "--frames", (dir / "frames").string(), "--out",
                              (dir / "drawn").string()});
-  const auto a = run_child(plain, kLimit);
+  const auto a = run_child(plain, kFrameRunSeconds);
   ASSERT_EQ(a.exit_code, 0) << a.output;
-  const auto b = run_child(drawn, kLimit);
+  const auto b = run_child(drawn, kFrameRunSeconds);
   ASSERT_EQ(b.exit_code, 0) << b.output;
   const auto plain_summary = read_summary(dir / "plain" / "summary.json");
   const auto drawn_summary = read_summary(dir / "drawn" / "summary.json");

@@ -17,7 +17,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr double kLimit = 180.0;
+constexpr double kMovieRunSeconds = 180.0;
 
 // Whether this machine's ffmpeg lists `name` among its encoders (asked here, apart from the
 // program's own probe).
@@ -61,7 +61,7 @@ TEST(MovieFormats, EachExtensionGivesAPlayableMovieWithEveryFrameOrIsRefusedBefo
     const fs::path movie = dir / (std::string("plate.") + c.extension);
     const auto r = run_child({"run", scene("notched_plate.toml"), "--until", "2.9e-5", "--frame-every", "1.3e-6",
                               "--size", "160x96", "--movie", movie.string(), "--quiet", "--out", (dir / "run").string()},
-                             kLimit);
+                             kMovieRunSeconds);
     ASSERT_FALSE(r.timed_out) << c.extension;
     if (!ffmpeg_has_encoder(c.encoder)) {
       // refused up front: nothing simulated, no file
@@ -87,7 +87,7 @@ TEST(MovieFormats, ReplayOfACheckpointFolderWritesAGif) {
   const auto dir = fresh_directory("movie_replay_gif");
   const auto live = run_child({"run", scene("pendulum.toml"), "--until", "0.25", "--checkpoint-every", "0.03",
                                "--checkpoint-dir", (dir / "states").string(), "--quiet", "--out", (dir / "live").string()},
-                              kLimit);
+                              kMovieRunSeconds);
   ASSERT_EQ(live.exit_code, 0) << live.output;
   long states = 1;  // the start
   for (const auto& entry : fs::directory_iterator(dir / "states")) states += entry.path().extension() == ".pfstate";
@@ -95,7 +95,7 @@ TEST(MovieFormats, ReplayOfACheckpointFolderWritesAGif) {
   const fs::path movie = dir / "replay.gif";
   const auto r = run_child({"run", (dir / "states").string(), "--movie", movie.string(), "--size", "96x64", "--quiet",
                             "--out", (dir / "replay").string()},
-                           kLimit);
+                           kMovieRunSeconds);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(movie_frames(movie), states);
 }
@@ -120,7 +120,7 @@ TEST(MovieFormats, MovieWhoseFfmpegFailsLeavesNoFileUnderItsName) {
     auto child = Child::shell("PATH='" + (dir / "bin").string() + "':\"$PATH\" " + PERIFLEX_BINARY + " run " +
                               scene("notched_plate.toml") + " --until 2e-5 --frame-every 4e-7 --size 160x96 --movie " +
                               movie.string() + " --quiet --out " + (dir / "run").string());
-    const ChildResult r = child->finish(kLimit);
+    const ChildResult r = child->finish(kMovieRunSeconds);
     ASSERT_FALSE(r.timed_out);
     EXPECT_NE(r.exit_code, 0) << name << ": " << r.output;
     EXPECT_NE(r.output.find("ffmpeg"), std::string::npos) << r.output;
@@ -151,7 +151,7 @@ TEST(MovieFormats, ExtensionThisFfmpegCannotWriteIsRefusedNamingWhatItCan) {
     auto child = Child::shell("PATH='" + (dir / "bin").string() + "':\"$PATH\" " + PERIFLEX_BINARY + " run " +
                               scene("notched_plate.toml") + " --until 1e-3 --movie " + (dir / c.movie).string() +
                               " --quiet --out " + (dir / "run").string());
-    const ChildResult r = child->finish(kLimit);
+    const ChildResult r = child->finish(kMovieRunSeconds);
     EXPECT_EQ(r.exit_code, 2) << c.movie << ": " << r.output;
     EXPECT_NE(r.output.find("--movie"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.said), std::string::npos) << r.output;

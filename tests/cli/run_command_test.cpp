@@ -19,7 +19,7 @@ namespace {
 std::string data_scene(const std::string& file) { return std::string(PERIFLEX_TEST_DATA) + "/scenes/" + file; }
 
 // Generous wall-time limits: a hang fails the test instead of holding up the suite.
-constexpr double kLimit = 120.0;
+constexpr double kRunSeconds = 120.0;
 
 // A run with a step that makes t / dt pass 1000 ended at its end time only by luck before:
 // the loop and the solver disagreed on "reached", and the program spun at 100% CPU for ever.
@@ -33,7 +33,7 @@ TEST(RunCommand, RunsEndAtTheEndTimeWhateverTheStep) {
     const auto out = fresh_directory(std::string("end_") + c.scene);
     const auto r = run_child({"run", scene(c.scene), "--set", std::string("solver.dt=") + c.dt, "--out", out.string(),
                               "--quiet"},
-                             kLimit);
+                             kRunSeconds);
     ASSERT_FALSE(r.timed_out) << c.scene << " did not end: " << r.output;
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const auto summary = read_summary(out / "summary.json");
@@ -49,7 +49,7 @@ TEST(RunCommand, RunsEndAtTheEndTimeWhateverTheStep) {
 // holds the state at that time: the fall y = -g t^2 / 2, which Verlet reproduces exactly.
 TEST(RunCommand, LongRunRowsLandOnTheirNominalTimes) {
   const auto out = fresh_directory("long_run");
-  const auto r = run_child({"run", data_scene("run/falling_body.toml"), "--out", out.string(), "--quiet"}, kLimit);
+  const auto r = run_child({"run", data_scene("run/falling_body.toml"), "--out", out.string(), "--quiet"}, kRunSeconds);
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Series s = read_series(out / "series.csv");
@@ -71,7 +71,7 @@ TEST(RunCommand, RowsWithAStepThatDoesNotDivideTheIntervalHoldTheStateAtTheirTim
   const auto r = run_child({"run", scene("studies/models/pendulum.toml"), "--set", "solver.dt=3e-3", "--set",
                             "solver.output_interval=0.5", "--set", "solver.end_time=60", "--set",
                             "solver.correction.method=projection", "--out", out.string(), "--quiet"},
-                           kLimit);
+                           kRunSeconds);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const Series s = read_series(out / "series.csv");
   ASSERT_EQ(s.rows.size(), 121u);
@@ -100,7 +100,7 @@ TEST(RunCommand, FramesAtAnIntervalTheStepDoesNotDivideReachTheEnd) {
   const auto r = run_child({"run", scene("flexible_slider_crank.toml"), "--render", "--frames", frames.string(),
                             "--frame-every", "0.00126", "--until", "0.006", "--size", "160x96", "--out",
                             out.string(), "--quiet"},
-                           kLimit);
+                           kRunSeconds);
   ASSERT_FALSE(r.timed_out) << r.output;
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(count_files(frames, ".png"), 5);  // t = 0, 1.26, 2.52, 3.78, 5.04 ms
@@ -114,7 +114,7 @@ TEST(RunCommand, MovieWithoutRenderFlagIsRecorded) {
   const auto movie = out / "m.mp4";
   const auto r = run_child({"run", scene("pendulum.toml"), "--movie", movie.string(), "--frame-every", "0.5",
                             "--size", "160x96", "--out", out.string(), "--quiet"},
-                           kLimit);
+                           kRunSeconds);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(movie_frames(movie), 11);  // t = 0, 0.5, ..., 5
 }
@@ -125,13 +125,13 @@ TEST(RunCommand, CameraOptionIsCheckedAndUsed) {
   const auto out = fresh_directory("camera");
   auto r = run_child({"run", scene("pendulum.toml"), "--frames", (out / "f").string(), "--frame-every", "1",
                       "--size", "160x96", "--camera", "0,-0.5,3", "--out", out.string(), "--quiet"},
-                     kLimit);
+                     kRunSeconds);
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_EQ(count_files(out / "f", ".png"), 6);
   const auto refused = fresh_directory("camera_refused");
   r = run_child({"run", scene("pendulum.toml"), "--frames", (refused / "g").string(), "--camera", "0,0,-1", "--out",
                  refused.string(), "--quiet"},
-                kLimit);
+                kRunSeconds);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--camera"), std::string::npos) << r.output;
   EXPECT_EQ(r.output.find("stopped"), std::string::npos) << r.output;
@@ -159,7 +159,7 @@ TEST(RunCommand, PlotColumnsAreCheckedAgainstTheRunsSeries) {
   for (const auto& c : cases) {
     std::vector<std::string> args = {"run", scene("notched_plate.toml"), "--out", out.string(), "--quiet"};
     args.insert(args.end(), c.flags.begin(), c.flags.end());
-    const auto r = run_child(args, kLimit);
+    const auto r = run_child(args, kRunSeconds);
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_NE(r.output.find(c.flag), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(c.says), std::string::npos) << r.output;
@@ -168,7 +168,7 @@ TEST(RunCommand, PlotColumnsAreCheckedAgainstTheRunsSeries) {
   // the refusal lists the columns there are
   const auto r = run_child({"run", scene("notched_plate.toml"), "--out", out.string(), "--quiet", "--frames", frames,
                             "--plot", "nothing"},
-                           kLimit);
+                           kRunSeconds);
   EXPECT_NE(r.output.find("driver_work, energy_balance"), std::string::npos) << r.output;
 }
 
@@ -178,12 +178,12 @@ TEST(RunCommand, ScreenshotAfterTheEndOrWithoutItsTimeIsRefused) {
   const auto out = fresh_directory("late_shot");
   auto r = run_child({"run", scene("pendulum.toml"), "--snapshot-at", "9", "--screenshot", (out / "s.png").string(),
                       "--out", out.string(), "--quiet"},
-                     kLimit);
+                     kRunSeconds);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("--snapshot-at"), std::string::npos) << r.output;
   r = run_child({"run", scene("pendulum.toml"), "--screenshot", (out / "s.png").string(), "--out", out.string(),
                  "--quiet"},
-                kLimit);
+                kRunSeconds);
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("key '--screenshot': needs --snapshot-at"), std::string::npos) << r.output;
 }
@@ -195,7 +195,7 @@ TEST(RunCommand, VtkSnapshotsEndWithTheLastState) {
   const auto out = fresh_directory("vtk_last");
   const auto r = run_child({"run", scene("pendulum.toml"), "--until", "0.05", "--vtk-every", "20", "--out",
                             out.string(), "--quiet"},
-                           kLimit);
+                           kRunSeconds);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const std::string pvd = read_text(out / "vtk" / "snapshots.pvd");
   std::vector<double> times;
@@ -304,7 +304,7 @@ TEST(RunCommand, SigtermWhileRecordingLeavesAPlayableMovieAndFrames) {
 TEST(RunCommand, FailedWriteIsToldInTheSummary) {
   const auto out = fresh_directory("disk_full");
   std::filesystem::create_symlink("/dev/full", out / "series.csv");
-  const auto r = run_child({"run", scene("pendulum.toml"), "--out", out.string(), "--quiet"}, kLimit);
+  const auto r = run_child({"run", scene("pendulum.toml"), "--out", out.string(), "--quiet"}, kRunSeconds);
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("series.csv"), std::string::npos) << r.output;
   const auto summary = read_summary(out / "summary.json");
@@ -323,12 +323,12 @@ bool run_on_small_disk(const std::string& name, int kilobytes, const std::string
   const auto disk = fresh_directory(name + "_mount");
   const std::string mount = "unshare -rm sh -c 'mount -t tmpfs -o size=" + std::to_string(kilobytes) + "k tmpfs \"" +
                             disk.string() + "\"";
-  if (Child::shell(mount + "'")->finish(kLimit).exit_code != 0) return false;
+  if (Child::shell(mount + "'")->finish(kRunSeconds).exit_code != 0) return false;
   std::string run = "cd \"" + disk.string() + "\" && \"" + PERIFLEX_BINARY + "\" run \"" + scene(scene_file) +
                     "\" --out run --quiet";
   for (const std::string& a : args) run += " " + a;
   run += "; echo \"exit=$?\"; cp -r \"" + disk.string() + "/run/.\" \"" + kept.string() + "\"";
-  result = Child::shell(mount + " && " + run + "'")->finish(kLimit);
+  result = Child::shell(mount + " && " + run + "'")->finish(kRunSeconds);
   return true;
 }
 
@@ -404,7 +404,7 @@ TEST(RunCommand, FullDiskCutsTheMovieAndSaysSo) {
 // time beside its wall time.
 TEST(RunCommand, ClosingLineAndSummaryAgree) {
   const auto out = fresh_directory("agree");
-  const auto r = run_child({"run", scene("double_pendulum.toml"), "--out", out.string(), "--quiet"}, kLimit);
+  const auto r = run_child({"run", scene("double_pendulum.toml"), "--out", out.string(), "--quiet"}, kRunSeconds);
   ASSERT_EQ(r.exit_code, 0) << r.output;
   const auto summary = read_summary(out / "summary.json");
   const auto m = testing::first_match(r.output, R"(([0-9]+) steps/s)");
@@ -423,7 +423,7 @@ TEST(RunCommand, HhtStepTooLargeForNewtonAsksForASmallerStep) {
   const auto run_hht = [](const std::string& dt, const std::filesystem::path& out) {
     return run_child({"run", scene("flexible_slider_crank.toml"), "--set", "solver.integrator=\"hht\"", "--set",
                       "solver.dt=" + dt, "--out", out.string(), "--quiet"},
-                     kLimit);
+                     kRunSeconds);
   };
   const auto out = fresh_directory("hht_too_large");
   const auto r = run_hht("2e-3", out);

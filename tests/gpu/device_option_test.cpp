@@ -35,7 +35,7 @@ const std::string& compute_unavailable() {
   return why;
 }
 
-#define REQUIRE_COMPUTE_CONTEXT() \
+#define REQUIRE_PROGRAM_COMPUTE_CONTEXT() \
   if (!compute_unavailable().empty()) GTEST_SKIP() << "no OpenGL compute context here: " << compute_unavailable()
 
 // series.csv as rows of numbers under its header.
@@ -71,7 +71,7 @@ int column(const Series& s, const std::string& name) {
 // each row's bonds in another order (1e-15 of a force), which the crack's own instability grows
 // over 300 steps; a wrong force or a missed break moves the columns by far more.
 TEST(DeviceOption, NotchedPlateOnTheGpuWritesTheCpuRows) {
-  REQUIRE_COMPUTE_CONTEXT();
+  REQUIRE_PROGRAM_COMPUTE_CONTEXT();
   const fs::path dir = fresh_directory("device_gpu");
   const std::string common = scene("notched_plate.toml") + " --quiet --until 1.2e-4 --set flex_body.plate.material.fracture_energy=3";
   const ProgramResult cpu = run_periflex("run " + common + " --device cpu --out " + (dir / "cpu").string());
@@ -140,7 +140,7 @@ TEST(DeviceOption, RefusesWithoutEgl) {
 
 // An OpenGL below 4.3 (Mesa told to offer 4.2 at most): no compute shaders, refused saying so.
 TEST(DeviceOption, RefusesOpenGlBelowCompute) {
-  REQUIRE_COMPUTE_CONTEXT();
+  REQUIRE_PROGRAM_COMPUTE_CONTEXT();
   {
     GlComputeContext probe(find_resource_root());
     if (probe.description().find("Mesa") == std::string::npos)

@@ -20,8 +20,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // a fixed view, 2.5e-4 m per pixel: the 100 mm x 40 mm plate is 400 x 160 pixels in the middle
-constexpr int kWidth = 640, kHeight = 480;
-constexpr double kViewHeight = 0.12, kMetresPerPixel = kViewHeight / kHeight;
+constexpr int kDeformWidth = 640, kDeformHeight = 480;
+constexpr double kViewHeight = 0.12, kMetresPerPixel = kViewHeight / kDeformHeight;
 // 0.3 ms into the run: the grips have turned by 1.8 mrad, before the crack starts (near 0.4 ms)
 constexpr const char* kTime = "3e-4";
 
@@ -33,8 +33,8 @@ RgbaImage screenshot(const std::string& deform) {
   const auto shot = out / "shot.png";
   const auto r = run_periflex("run " + scene("notched_plate.toml") + " --until " + kTime + " --snapshot-at " +
                               kTime + " --screenshot " + shot.string() + " --camera 0,0," +
-                              std::to_string(kViewHeight) + " --size " + std::to_string(kWidth) + "x" +
-                              std::to_string(kHeight) + " --deform " + deform + " --quiet --out " + out.string());
+                              std::to_string(kViewHeight) + " --size " + std::to_string(kDeformWidth) + "x" +
+                              std::to_string(kDeformHeight) + " --deform " + deform + " --quiet --out " + out.string());
   EXPECT_EQ(r.exit_code, 0) << r.output;
   return read_png(shot.string());
 }
@@ -45,8 +45,8 @@ int lower_edge(const RgbaImage& image, int x) {
   const RenderSettings defaults;
   int bg[3];
   for (int c = 0; c < 3; ++c) bg[c] = int(std::lround(defaults.background[c] * 255));
-  const int edge = kHeight / 2 + int(0.02 / kMetresPerPixel);
-  for (int y = std::min(kHeight - 1, edge + 60); y > edge - 60; --y) {
+  const int edge = kDeformHeight / 2 + int(0.02 / kMetresPerPixel);
+  for (int y = std::min(kDeformHeight - 1, edge + 60); y > edge - 60; --y) {
     const uint8_t* p = image.at(x, y);
     if (std::abs(p[0] - bg[0]) + std::abs(p[1] - bg[1]) + std::abs(p[2] - bg[2]) > 60) return y;
   }
@@ -56,16 +56,16 @@ int lower_edge(const RgbaImage& image, int x) {
 // the columns of the plate's lower edge, away from the notch (|x| < 4 mm) and from the grips
 std::vector<int> edge_columns() {
   std::vector<int> columns;
-  for (int x = kWidth / 2 - int(0.044 / kMetresPerPixel); x <= kWidth / 2 + int(0.044 / kMetresPerPixel); ++x)
-    if (std::abs(x - kWidth / 2) > int(0.004 / kMetresPerPixel)) columns.push_back(x);
+  for (int x = kDeformWidth / 2 - int(0.044 / kMetresPerPixel); x <= kDeformWidth / 2 + int(0.044 / kMetresPerPixel); ++x)
+    if (std::abs(x - kDeformWidth / 2) > int(0.004 / kMetresPerPixel)) columns.push_back(x);
   return columns;
 }
 
 TEST(DeformationRender, NotchedPlateLowerEdgeMovesAtHundredfoldAndNotAtZero) {
   const RgbaImage undeformed = screenshot("0"), true_scale = screenshot("1"), magnified = screenshot("100");
-  ASSERT_EQ(undeformed.width, kWidth);
+  ASSERT_EQ(undeformed.width, kDeformWidth);
   // where the undeformed plate's lower edge is drawn: its particle discs reach y = -0.02 m
-  const int reference = kHeight / 2 + int(std::lround(0.02 / kMetresPerPixel));
+  const int reference = kDeformHeight / 2 + int(std::lround(0.02 / kMetresPerPixel));
   int largest_true = 0, largest_magnified = 0;
   for (int x : edge_columns()) {
     const int e0 = lower_edge(undeformed, x), e1 = lower_edge(true_scale, x), e100 = lower_edge(magnified, x);
@@ -87,10 +87,10 @@ TEST(DeformationRender, NotchedPlateLowerEdgeMovesAtHundredfoldAndNotAtZero) {
 template <class Colour>
 std::array<int, 4> left_end_box(const RgbaImage& image, Colour is) {
   // the band of the plate's height and 15 mm more each way, left of the notch's damage
-  std::array<int, 4> box = {kWidth, kHeight, -1, -1};
+  std::array<int, 4> box = {kDeformWidth, kDeformHeight, -1, -1};
   const int band = int(0.035 / kMetresPerPixel);
-  for (int y = kHeight / 2 - band; y < kHeight / 2 + band; ++y)
-    for (int x = 0; x < kWidth / 2 - int(0.02 / kMetresPerPixel); ++x) {
+  for (int y = kDeformHeight / 2 - band; y < kDeformHeight / 2 + band; ++y)
+    for (int x = 0; x < kDeformWidth / 2 - int(0.02 / kMetresPerPixel); ++x) {
       const uint8_t* p = image.at(x, y);
       if (!is(p[0], p[1], p[2])) continue;
       box = {std::min(box[0], x), std::min(box[1], y), std::max(box[2], x), std::max(box[3], y)};

@@ -19,7 +19,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 64, kHeight = 48;
+constexpr int kFrameWidth = 64, kFrameHeight = 48;
 
 // A square plate of side x side particles over [x0, x0 + 1] x [0, 1], every particle with the
 // same damage, so that the frame's centre shows `damage` through the colour map.
@@ -57,8 +57,8 @@ Snapshot plate(double damage, double x0 = 0.0, int side = 24) {
 // Small frames, damage on a fixed 0..1 range through the grey map, no overlay.
 RecorderOptions small_options() {
   RecorderOptions options;
-  options.width = kWidth;
-  options.height = kHeight;
+  options.width = kFrameWidth;
+  options.height = kFrameHeight;
   options.settings.colormap = "grey";
   options.settings.auto_range = false;
   options.settings.range_min = 0.0f;
@@ -109,8 +109,8 @@ TEST(Recorder, FramesAreNumberedWithoutGapsInSubmissionOrder) {
   int previous = -1;
   for (int k = 0; k < kFrames; ++k) {
     const RgbaImage frame = read_png((dir / "frames" / frame_name(k)).string());
-    ASSERT_EQ(frame.width, kWidth);
-    ASSERT_EQ(frame.height, kHeight);
+    ASSERT_EQ(frame.width, kFrameWidth);
+    ASSERT_EQ(frame.height, kFrameHeight);
     EXPECT_GT(centre_grey(frame), previous) << "frame " << k << " is out of order";
     previous = centre_grey(frame);
   }
@@ -160,7 +160,7 @@ TEST(Recorder, CameraWidensWhenParticlesLeaveTheView) {
   long white = 0;
   for (int y = 0; y < moved.height; ++y)
     for (int x = 0; x < moved.width; ++x) white += moved.at(x, y)[0] > 200;
-  EXPECT_GT(white, kWidth * kHeight / 10);
+  EXPECT_GT(white, kFrameWidth * kFrameHeight / 10);
 }
 
 // White pixels of frame i of a recording of the plate that moves far to the right after frame 0.
@@ -191,7 +191,7 @@ TEST(Recorder, FixedCameraShowsTheViewTheUserSet) {
   options.camera_mode = RecorderOptions::CameraMode::kFixed;
   options.camera.center = Vec2(5.5, 0.5);
   options.camera.view_height = 3.0;
-  EXPECT_GT(white_after_moving("camera_fixed", options), kWidth * kHeight / 20);
+  EXPECT_GT(white_after_moving("camera_fixed", options), kFrameWidth * kFrameHeight / 20);
 }
 
 // The frames folder replaced by a file once the recorder has started: the file thread cannot write.

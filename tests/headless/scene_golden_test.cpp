@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr int kWidth = 320, kHeight = 240;
+constexpr int kGoldenWidth = 320, kGoldenHeight = 240;
 constexpr int kChannelTolerance = 5;
 constexpr double kMaxFailingFraction = 0.001;
 
@@ -73,7 +73,7 @@ class SceneGolden : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SceneGolden, MatchesGoldenImage) {
   const std::string name = GetParam();
-  const RgbaImage actual = render_snapshot_image(snapshot_of(name), RenderSettings{}, kWidth, kHeight);
+  const RgbaImage actual = render_snapshot_image(snapshot_of(name), RenderSettings{}, kGoldenWidth, kGoldenHeight);
   if (updating_goldens()) {
     write_png(golden_path(name).string(), actual);
     GTEST_SKIP() << "golden written: " << golden_path(name);
@@ -101,7 +101,7 @@ RenderSettings magnified_settings(float deform = 100.0f) {
 
 TEST(MagnifiedGolden, NotchedPlateAtHundredfold) {
   const std::string name = "notched_plate_deform100";
-  const RgbaImage actual = render_snapshot_image(snapshot_of("notched_plate"), magnified_settings(), kWidth, kHeight);
+  const RgbaImage actual = render_snapshot_image(snapshot_of("notched_plate"), magnified_settings(), kGoldenWidth, kGoldenHeight);
   if (updating_goldens()) {
     write_png(golden_path(name).string(), actual);
     GTEST_SKIP() << "golden written: " << golden_path(name);
@@ -132,7 +132,7 @@ TEST_F(GoldenCatches, AChangedColourMap) {
   if (updating_goldens()) GTEST_SKIP();
   RenderSettings settings;
   settings.colormap = "viridis";
-  EXPECT_GT(failing_fraction(render_snapshot_image(*plate_, settings, kWidth, kHeight)), kMaxFailingFraction);
+  EXPECT_GT(failing_fraction(render_snapshot_image(*plate_, settings, kGoldenWidth, kGoldenHeight)), kMaxFailingFraction);
 }
 
 TEST_F(GoldenCatches, AMissingParticleSet) {
@@ -144,8 +144,8 @@ TEST_F(GoldenCatches, AMissingParticleSet) {
   without.displacement.clear();
   without.speed.clear();
   without.strain.clear();
-  const Camera camera = fit_camera(*plate_, kWidth, kHeight);
-  EXPECT_GT(failing_fraction(render_snapshot_image(without, RenderSettings{}, kWidth, kHeight, &camera)),
+  const Camera camera = fit_camera(*plate_, kGoldenWidth, kGoldenHeight);
+  EXPECT_GT(failing_fraction(render_snapshot_image(without, RenderSettings{}, kGoldenWidth, kGoldenHeight, &camera)),
             kMaxFailingFraction);
 }
 
@@ -153,15 +153,15 @@ TEST_F(GoldenCatches, AMissingMagnification) {
   if (updating_goldens()) GTEST_SKIP();
   // the plate at true scale against the magnified golden
   const RgbaImage expected = read_png(golden_path("notched_plate_deform100").string());
-  const RgbaImage true_scale = render_snapshot_image(*plate_, magnified_settings(1.0f), kWidth, kHeight);
+  const RgbaImage true_scale = render_snapshot_image(*plate_, magnified_settings(1.0f), kGoldenWidth, kGoldenHeight);
   EXPECT_GT(compare_images(expected, true_scale, kChannelTolerance).failing_fraction(), kMaxFailingFraction);
 }
 
 TEST_F(GoldenCatches, AWrongCamera) {
   if (updating_goldens()) GTEST_SKIP();
-  Camera camera = fit_camera(*plate_, kWidth, kHeight);
+  Camera camera = fit_camera(*plate_, kGoldenWidth, kGoldenHeight);
   camera.view_height *= 1.2;
-  EXPECT_GT(failing_fraction(render_snapshot_image(*plate_, RenderSettings{}, kWidth, kHeight, &camera)),
+  EXPECT_GT(failing_fraction(render_snapshot_image(*plate_, RenderSettings{}, kGoldenWidth, kGoldenHeight, &camera)),
             kMaxFailingFraction);
 }
 

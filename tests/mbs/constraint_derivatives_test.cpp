@@ -13,19 +13,16 @@
 
 #include "mbs/constraint.h"
 #include "mbs/joint_factory.h"
+#include "mbs/three_body_coordinates.h"
 
 namespace periflex {
 namespace {
 
 constexpr int kBodies = 3;
-constexpr int kCoordinates = 3 * kBodies;
-
-Eigen::VectorXd random_vector(std::mt19937& rng, double scale) {
-  std::uniform_real_distribution<double> u(-scale, scale);
-  Eigen::VectorXd v(kCoordinates);
-  for (int k = 0; k < kCoordinates; ++k) v[k] = u(rng);
-  return v;
-}
+using testing::kSpreadPose;
+using testing::kThreeBodyCoordinates;
+using testing::random_coordinates;
+static_assert(3 * kBodies == kThreeBodyCoordinates);
 
 Eigen::VectorXd residual(const Constraint& c, const Eigen::VectorXd& q, double t) {
   Eigen::VectorXd phi(c.rows());
@@ -36,7 +33,7 @@ Eigen::VectorXd residual(const Constraint& c, const Eigen::VectorXd& q, double t
 Eigen::MatrixXd dense_jacobian(const Constraint& c, const Eigen::VectorXd& q, double t) {
   Triplets triplets;
   c.jacobian(q, t, 0, triplets);
-  Eigen::SparseMatrix<double> j(c.rows(), kCoordinates);
+  Eigen::SparseMatrix<double> j(c.rows(), kThreeBodyCoordinates);
   j.setFromTriplets(triplets.begin(), triplets.end());
   return Eigen::MatrixXd(j);
 }
@@ -45,14 +42,14 @@ Eigen::MatrixXd dense_jacobian(const Constraint& c, const Eigen::VectorXd& q, do
 void check_derivatives(const Constraint& c) {
   std::mt19937 rng(12345);
   for (int trial = 0; trial < 20; ++trial) {
-    const Eigen::VectorXd q = random_vector(rng, 2.0);
-    const Eigen::VectorXd qd = random_vector(rng, 1.5);
+    const Eigen::VectorXd q = random_coordinates(rng, 2.0);
+    const Eigen::VectorXd qd = random_coordinates(rng, 1.5);
     const double t = std::uniform_real_distribution<double>(0.0, 2.0)(rng);
 
     // Jacobian: central differences, step 1e-6 -> truncation ~1e-12, round-off ~1e-10 at O(1) values
     const double h = 1e-6;
     const Eigen::MatrixXd jac = dense_jacobian(c, q, t);
-    for (int col = 0; col < kCoordinates; ++col) {
+    for (int col = 0; col < kThreeBodyCoordinates; ++col) {
       Eigen::VectorXd qp = q, qm = q;
       qp[col] += h;
       qm[col] -= h;
@@ -81,7 +78,7 @@ void check_derivatives(const Constraint& c) {
     // the coordinate list covers every column the Jacobian touches
     std::vector<int> coords;
     c.coordinates(coords);
-    for (int col = 0; col < kCoordinates; ++col) {
+    for (int col = 0; col < kThreeBodyCoordinates; ++col) {
       if (jac.col(col).norm() > 0) {
         EXPECT_NE(std::find(coords.begin(), coords.end(), col), coords.end());
       }
@@ -119,50 +116,48 @@ DriverDef driver(DriverDef::Kind kind) {
   return def;
 }
 
-const Eigen::VectorXd kQ0 = Eigen::VectorXd::LinSpaced(kCoordinates, 0.1, 0.9);
-
 // body pairs: two moving bodies, and each side on the ground
 const std::pair<int, int> kPairs[] = {{0, 2}, {-1, 1}, {1, -1}};
 
 TEST(ConstraintDerivatives, RevoluteMatchesFiniteDifferences) {
-  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kRevolute), i, j, kQ0));
+  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kRevolute), i, j, kSpreadPose));
 }
 
 TEST(ConstraintDerivatives, TranslationalMatchesFiniteDifferences) {
-  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kTranslational), i, j, kQ0));
+  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kTranslational), i, j, kSpreadPose));
 }
 
 TEST(ConstraintDerivatives, RigidMatchesFiniteDifferences) {
-  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kRigid), i, j, kQ0));
+  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kRigid), i, j, kSpreadPose));
 }
 
 TEST(ConstraintDerivatives, RevoluteRevoluteMatchesFiniteDifferences) {
-  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kRevoluteRevolute), i, j, kQ0));
+  for (auto [i, j] : kPairs) check_derivatives(*make_joint(joint(JointDef::Kind::kRevoluteRevolute), i, j, kSpreadPose));
 }
 
 TEST(ConstraintDerivatives, RevoluteTranslationalMatchesFiniteDifferences) {
   for (auto [i, j] : kPairs) {
-    check_derivatives(*make_joint(joint(JointDef::Kind::kRevoluteTranslational), i, j, kQ0));
+    check_derivatives(*make_joint(joint(JointDef::Kind::kRevoluteTranslational), i, j, kSpreadPose));
   }
 }
 
 TEST(ConstraintDerivatives, AbsoluteAngleDriverMatchesFiniteDifferences) {
-  auto c = make_driver(driver(DriverDef::Kind::kAbsoluteAngle), 1, -1, kQ0);
+  auto c = make_driver(driver(DriverDef::Kind::kAbsoluteAngle), 1, -1, kSpreadPose);
   EXPECT_TRUE(c->is_driver());
   check_derivatives(*c);
 }
 
 TEST(ConstraintDerivatives, RelativeAngleDriverMatchesFiniteDifferences) {
-  for (auto [i, j] : kPairs) check_derivatives(*make_driver(driver(DriverDef::Kind::kRelativeAngle), i, j, kQ0));
+  for (auto [i, j] : kPairs) check_derivatives(*make_driver(driver(DriverDef::Kind::kRelativeAngle), i, j, kSpreadPose));
 }
 
 TEST(ConstraintDerivatives, AbsolutePositionDriverMatchesFiniteDifferences) {
-  check_derivatives(*make_driver(driver(DriverDef::Kind::kAbsolutePosition), 2, -1, kQ0));
+  check_derivatives(*make_driver(driver(DriverDef::Kind::kAbsolutePosition), 2, -1, kSpreadPose));
 }
 
 TEST(ConstraintDerivatives, RelativePositionDriverMatchesFiniteDifferences) {
   for (auto [i, j] : kPairs) {
-    check_derivatives(*make_driver(driver(DriverDef::Kind::kRelativePosition), i, j, kQ0));
+    check_derivatives(*make_driver(driver(DriverDef::Kind::kRelativePosition), i, j, kSpreadPose));
   }
 }
 
@@ -170,21 +165,21 @@ TEST(JointFactory, LengthAndAngleFromInitialConfiguration) {
   // the link takes the initial distance of its points; Phi vanishes at q0
   JointDef link = joint(JointDef::Kind::kRevoluteRevolute);
   link.length_from_initial = true;
-  auto c = make_joint(link, 0, 1, kQ0);
-  EXPECT_NEAR(residual(*c, kQ0, 0.0)[0], 0.0, 1e-14);
+  auto c = make_joint(link, 0, 1, kSpreadPose);
+  EXPECT_NEAR(residual(*c, kSpreadPose, 0.0)[0], 0.0, 1e-14);
   JointDef weld = joint(JointDef::Kind::kRigid);
   weld.relative_angle_from_initial = true;
-  auto w = make_joint(weld, 0, 1, kQ0);
-  EXPECT_NEAR(residual(*w, kQ0, 0.0)[2], 0.0, 1e-14);
+  auto w = make_joint(weld, 0, 1, kSpreadPose);
+  EXPECT_NEAR(residual(*w, kSpreadPose, 0.0)[2], 0.0, 1e-14);
 }
 
 TEST(JointFactory, RejectsJointOfABodyToItself) {
-  EXPECT_THROW(make_joint(joint(JointDef::Kind::kRevolute), 1, 1, kQ0), InputError);
+  EXPECT_THROW(make_joint(joint(JointDef::Kind::kRevolute), 1, 1, kSpreadPose), InputError);
   JointDef link = joint(JointDef::Kind::kRevoluteRevolute);
   link.length_from_initial = true;
   link.point_i = link.point_j = Vec2::Zero();
   // both points at the same global place: zero length link
-  EXPECT_THROW(make_joint(link, -1, -1, kQ0), InputError);
+  EXPECT_THROW(make_joint(link, -1, -1, kSpreadPose), InputError);
 }
 
 }  // namespace

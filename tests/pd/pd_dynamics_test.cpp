@@ -12,24 +12,10 @@ namespace {
 
 using test::box;
 using test::glass_plate;
+using test::column_velocity;
 using test::VerletLoop;
 
 constexpr double kE = 72e9, kRho = 2440.0;
-
-// Mean x-velocity of the particles in the grid column nearest reference x = at.
-double column_velocity(const PdBody& body, const Eigen::VectorXd& qd, double at) {
-  const std::vector<double>& x = body.reference_positions();
-  const double column = x[2 * body.nearest_particle(Vec2(at, 0.0))];
-  double sum = 0.0;
-  int count = 0;
-  for (int i = 0; i < body.particle_count(); ++i) {
-    if (std::abs(x[2 * i] - column) < 0.25 * body.grid_spacing()) {
-      sum += qd[2 * i];
-      ++count;
-    }
-  }
-  return sum / count;
-}
 
 TEST(PdWaves, LongitudinalFrontTravelsAtBarWaveSpeed) {
   test::SerialScope serial;

@@ -14,6 +14,7 @@ namespace periflex {
 namespace {
 
 using test::box;
+using test::column_velocity;
 using test::VerletLoop;
 
 constexpr double kSteelE = 200e9, kSteelRho = 7850.0;
@@ -31,21 +32,6 @@ FlexBodyDef steel(double width, double height, double dx) {
   def.material.model = PdMaterialDef::Model::kStateBased;
   def.material.poisson_ratio = 0.3;
   return def;
-}
-
-// Mean velocity component `comp` (0: x, 1: y) of the particles in the grid column nearest reference x = at.
-double column_velocity(const PdBody& body, const Eigen::VectorXd& qd, double at, int comp = 0) {
-  const std::vector<double>& x = body.reference_positions();
-  const double column = x[2 * body.nearest_particle(Vec2(at, 0.0))];
-  double sum = 0.0;
-  int count = 0;
-  for (int i = 0; i < body.particle_count(); ++i) {
-    if (std::abs(x[2 * i] - column) < 0.25 * body.grid_spacing()) {
-      sum += qd[2 * i + comp];
-      ++count;
-    }
-  }
-  return sum / count;
 }
 
 // A strip 300 x 30 particles pushed at its left end with a velocity ramped to v0 over 10 us: the

@@ -52,6 +52,21 @@ inline FlexBodyDef glass_plate(double width, double height, double dx, double th
   return def;
 }
 
+// Mean velocity component `comp` (0: x, 1: y) of the particles in the grid column nearest reference x = at.
+inline double column_velocity(const PdBody& body, const Eigen::VectorXd& qd, double at, int comp = 0) {
+  const std::vector<double>& x = body.reference_positions();
+  const double column = x[2 * body.nearest_particle(Vec2(at, 0.0))];
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < body.particle_count(); ++i) {
+    if (std::abs(x[2 * i] - column) < 0.25 * body.grid_spacing()) {
+      sum += qd[2 * i + comp];
+      ++count;
+    }
+  }
+  return sum / count;
+}
+
 // Uniaxial stress along x in plane stress with nu = 1/3: eps_yy = -eps / 3, W = E eps^2 / 2.
 inline Eigen::Matrix2d uniaxial(double eps) {
   Eigen::Matrix2d h;

@@ -4,9 +4,8 @@
 //
 //   shared_machine_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 //
-// The program starts itself again with a brief spin before waiting threads sleep, as periflex
-// does (core/thread_waiting.h); set OMP_WAIT_POLICY=passive to compare with sleeping at once,
-// OMP_WAIT_POLICY=active to see libgomp's default spinning.
+// The threads are the solver's own team (core/thread_pool.h): a brief spin, then sleep, and the
+// caller waits for the work, not for a worker kept off its core.
 // Goals: with the busy process, two threads within 1.3x of one thread's wall time; quiet, two
 // threads at least 1.6x faster than one.
 #include <benchmark/benchmark.h>
@@ -19,7 +18,6 @@
 #include <optional>
 #include <string>
 
-#include "core/thread_waiting.h"
 #include "scene/scene_loader.h"
 #include "solve/simulation.h"
 
@@ -93,7 +91,6 @@ BENCHMARK(GlassBranchingSteps)
 }  // namespace periflex
 
 int main(int argc, char** argv) {
-  periflex::restart_with_brief_spinning(argv);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

@@ -2,8 +2,9 @@
 # The sanitizer configurations CI runs after the main suite:
 #   AddressSanitizer + UBSan over the solver, peridynamics, coupling, contact, the scene parser
 #   (malformed scenes) and the command line;
-#   ThreadSanitizer over the threaded parts of the visualiser: the unit tests (snapshot exchange,
-#   command queue, simulation thread) and the GUI smoke tests, scripted runs of the program under
+#   ThreadSanitizer over the solver's team of threads (core/thread_pool.h) and the threaded parts
+#   of the visualiser: the unit tests (snapshot exchange, command queue, simulation thread) and
+#   the GUI smoke tests, scripted runs of the program under
 #   Xvfb that drive the simulation thread while the window draws (tests/gui_smoke.cmake, label
 #   gui; the first report fails the test).
 set -euo pipefail
@@ -28,8 +29,9 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 
 # one build for both: the program (with the GUI) and the unit tests, nothing else
 cmake --preset tsan >/dev/null
-tsan_targets=(test_app periflex)
+tsan_targets=(test_app test_core periflex)
 if command -v xvfb-run >/dev/null; then tsan_targets+=(gui_png_check); fi
 cmake --build --preset tsan -j"$jobs" --target "${tsan_targets[@]}"
 TSAN_OPTIONS="suppressions=$PWD/scripts/tsan.supp second_deadlock_stack=1" \
   ctest --preset tsan -j"$jobs" -L '^(app|gui)$' --timeout 900
+TSAN_OPTIONS="second_deadlock_stack=1" ctest --preset tsan -j"$jobs" -R '^ThreadPool\.' --timeout 300

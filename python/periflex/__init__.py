@@ -12,18 +12,10 @@ raised with the program's messages (InputError, a ValueError; NumericalError, a 
 import os as _os
 import pathlib as _pathlib
 
-# How the solver's OpenMP threads wait for each other, as in the program (core/thread_waiting.h):
-# a brief spin, then sleep, so that a thread spinning at a barrier does not take the core of the
-# one everybody waits for on a shared machine (libgomp's default spin made the notched plate at
-# 100k particles twice as slow on a loaded 2-core machine). libgomp reads it once, when the
-# extension below loads it; a user's own OMP_WAIT_POLICY or GOMP_SPINCOUNT is kept.
-if "OMP_WAIT_POLICY" not in _os.environ and "GOMP_SPINCOUNT" not in _os.environ:
-    _os.environ["GOMP_SPINCOUNT"] = "300"  # kSpinTurns
-
-from . import _toml  # noqa: E402
-from ._periflex import InputError, NumericalError, integrator_names, render_available, __version__  # noqa: E402,F401
-from ._periflex import _Simulation  # noqa: E402
-from . import _periflex as _periflex_core  # noqa: E402
+from . import _toml
+from ._periflex import InputError, NumericalError, integrator_names, render_available, __version__  # noqa: F401
+from ._periflex import _Simulation
+from . import _periflex as _periflex_core
 
 __all__ = ["Simulation", "InputError", "NumericalError", "integrator_names", "render_available", "series_units",
            "scenes_folder", "run", "study", "sweep", "read_series", "__version__"]
@@ -171,4 +163,4 @@ def series_units(sim):
 
 
 # the commands, after _override_text which run() uses
-from ._commands import read_series, run, study, sweep  # noqa: E402,F401
+from ._commands import read_series, run, study, sweep  # noqa: F401

@@ -78,9 +78,7 @@ ModelFactory simulation_model_factory() {
   f.build = [](const SceneDef& scene) -> std::unique_ptr<SteppedModel> {
     return std::make_unique<SimulationModel>(scene);
   };
-  // parallel regions started by the simulation thread leave one core to drawing, unless
-  // OMP_NUM_THREADS says otherwise (the ThreadSanitizer run keeps OpenMP to one thread: GCC's
-  // libgomp is not instrumented, so TSan cannot see its barriers)
+  // the simulation thread's team leaves one core to drawing, unless OMP_NUM_THREADS says otherwise
   f.started = [] {
     const char* chosen = std::getenv("OMP_NUM_THREADS");
     if (chosen && *chosen) return;

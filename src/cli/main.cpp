@@ -24,7 +24,6 @@
 #include "cli/sweep_command.h"
 #include "core/error.h"
 #include "core/resources.h"
-#include "core/thread_waiting.h"
 #include "study/study_def.h"
 #include "study/sweep_def.h"
 
@@ -246,7 +245,6 @@ int run_main(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  periflex::restart_with_brief_spinning(argv);
   try {
     return run_main(argc, argv);
   } catch (const periflex::InputError& error) {

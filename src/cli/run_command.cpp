@@ -20,6 +20,7 @@
 #include "cli/run_option_checks.h"
 #include "cli/scene_setup.h"
 #include "core/cpu_time.h"
+#include "core/thread_pool.h"
 #include "core/error.h"
 #include "core/sim_time.h"
 #include "output/atomic_file.h"
@@ -262,7 +263,7 @@ RunOutcome run_and_report(const RunOptions& requested) {
     summary.message = message;
     exit_code = code;
   };
-  const double worker_cpu_start = omp_worker_cpu_seconds();
+  const double worker_cpu_start = team_worker_cpu_seconds();
   try {
     // a run restarted into its own folder keeps the rows before the checkpoint: its series.csv
     // is then the whole run's
@@ -339,7 +340,7 @@ RunOutcome run_and_report(const RunOptions& requested) {
     fail("error", kExitOther, std::string("error: ") + error.what());
   }
   progress.finish();
-  solver_cpu += omp_worker_cpu_seconds() - worker_cpu_start;
+  solver_cpu += team_worker_cpu_seconds() - worker_cpu_start;
 
   outputs.finish();
   if (!outputs.frame_error.empty() && exit_code == kExitOk) {

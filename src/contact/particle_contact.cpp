@@ -6,6 +6,7 @@
 
 #include "contact/contact_law.h"
 #include "contact/contact_stiffness.h"
+#include "core/thread_pool.h"
 
 namespace periflex {
 
@@ -119,8 +120,9 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
   const int chunks = (n + kPairChunkParticles - 1) / kPairChunkParticles;
   const double k = stiffness_, d = distance_;
   std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
-#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1 && points == nullptr)
-  for (int c = 0; c < chunks; ++c) {
+  // one chunk's sweep, on the team's threads unless contact points are gathered (one list)
+  const auto sweep_chunk = [&](int64_t chunk) {
+    const int c = static_cast<int>(chunk);
     Sums& s = partial[c];
     const int end = std::min(n, (c + 1) * kPairChunkParticles);
     for (int a = c * kPairChunkParticles; a < end; ++a) {
@@ -159,7 +161,11 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
         (*g)[xa + 1] += fy;
       }
     }
-  }
+  };
+  if (chunks > 1 && points == nullptr)
+    parallel_for(chunks, sweep_chunk);
+  else
+    for (int c = 0; c < chunks; ++c) sweep_chunk(c);
   Sums total;
   for (const Sums& s : partial) {
     total.energy += s.energy;

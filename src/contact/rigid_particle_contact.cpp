@@ -7,6 +7,7 @@
 #include "contact/contact_law.h"
 #include "contact/contact_stiffness.h"
 #include "contact/shape_distance.h"
+#include "core/thread_pool.h"
 
 namespace periflex {
 
@@ -52,8 +53,9 @@ RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q,
   const int n = static_cast<int>(mass_.size());
   const int chunks = (n + kShapeChunkParticles - 1) / kShapeChunkParticles;
   std::vector<Sums> partial(static_cast<size_t>(std::max(chunks, 1)));
-#pragma omp parallel for schedule(dynamic, 1) if (chunks > 1 && points == nullptr)
-  for (int c = 0; c < chunks; ++c) {
+  // one chunk's sweep, on the team's threads unless contact points are gathered (one list)
+  const auto sweep_chunk = [&](int64_t chunk) {
+    const int c = static_cast<int>(chunk);
     Sums& s = partial[c];
     const int end = std::min(n, (c + 1) * kShapeChunkParticles);
     for (int i = c * kShapeChunkParticles; i < end; ++i) {
@@ -97,7 +99,11 @@ RigidParticleContact::Sums RigidParticleContact::sweep(const Eigen::VectorXd& q,
       s.fy -= force.y();
       s.moment -= cross(p - r, force);
     }
-  }
+  };
+  if (chunks > 1 && points == nullptr)
+    parallel_for(chunks, sweep_chunk);
+  else
+    for (int c = 0; c < chunks; ++c) sweep_chunk(c);
   Sums total;
   for (const Sums& s : partial) {
     total.fx += s.fx;

@@ -1,5 +1,5 @@
 // Element-wise loops over the state vectors of large models, in fixed chunks handed to the
-// OpenMP threads as they become free. Chunk boundaries do not depend on the thread count, so a
+// team's threads as they become free (core/thread_pool.h). Chunk boundaries do not depend on the thread count, so a
 // loop whose chunks write disjoint entries, or whose per-chunk partial results are combined in
 // chunk order, gives the same bits on any number of threads.
 #pragma once
@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cstdint>
 #include <vector>
+
+#include "core/thread_pool.h"
 
 namespace periflex {
 
@@ -25,20 +27,18 @@ void parallel_chunks(int64_t n, Fn&& fn) {
     fn(int64_t{0}, int64_t{0}, n);
     return;
   }
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int64_t c = 0; c < chunks; ++c) fn(c, c * kChunkEntries, std::min(n, (c + 1) * kChunkEntries));
+  parallel_for(chunks, [&](int64_t c) { fn(c, c * kChunkEntries, std::min(n, (c + 1) * kChunkEntries)); });
 }
 
 // Sum of fn(begin, end) over fixed ranges of `per_chunk` items of [0, n), added in range order:
-// the same bits on any number of threads (an OpenMP reduction adds in an order that depends on
-// the team). Ranges go to the threads as they become free.
+// the same bits on any number of threads (a reduction on the fly would add in an order that
+// depends on the threads' timing). Ranges go to the threads as they become free.
 template <typename Fn>
 double ordered_sum(int64_t n, int64_t per_chunk, Fn&& fn) {
   const int64_t chunks = (n + per_chunk - 1) / per_chunk;
   if (chunks <= 1) return n > 0 ? fn(int64_t{0}, n) : 0.0;
   std::vector<double> partial(static_cast<size_t>(chunks), 0.0);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int64_t c = 0; c < chunks; ++c) partial[c] = fn(c * per_chunk, std::min(n, (c + 1) * per_chunk));
+  parallel_for(chunks, [&](int64_t c) { partial[c] = fn(c * per_chunk, std::min(n, (c + 1) * per_chunk)); });
   double sum = 0.0;
   for (double p : partial) sum += p;
   return sum;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel_chunks.h"
+
 namespace periflex {
 
 NeighborList find_neighbors(const std::vector<double>& x, const std::vector<double>& y, double radius) {
@@ -82,20 +84,22 @@ NeighborList find_neighbors(const std::vector<double>& x, const std::vector<doub
   };
 
   // pass 1: count per particle; pass 2: fill and sort each row
-#pragma omp parallel for schedule(static)
-  for (int64_t i = 0; i < n; ++i) {
-    int64_t count = 0;
-    visit(i, [&](int32_t) { ++count; });
-    out.row[i + 1] = count;
-  }
+  parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      int64_t count = 0;
+      visit(i, [&](int32_t) { ++count; });
+      out.row[i + 1] = count;
+    }
+  });
   for (int64_t i = 0; i < n; ++i) out.row[i + 1] += out.row[i];
   out.col.resize(out.row[n]);
-#pragma omp parallel for schedule(static)
-  for (int64_t i = 0; i < n; ++i) {
-    int64_t at = out.row[i];
-    visit(i, [&](int32_t j) { out.col[at++] = j; });
-    std::sort(out.col.begin() + out.row[i], out.col.begin() + out.row[i + 1]);
-  }
+  parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      int64_t at = out.row[i];
+      visit(i, [&](int32_t j) { out.col[at++] = j; });
+      std::sort(out.col.begin() + out.row[i], out.col.begin() + out.row[i + 1]);
+    }
+  });
   return out;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "core/parallel_chunks.h"
 #include "pd/pd_body_impl.h"
 
 namespace periflex {
@@ -14,13 +15,14 @@ void PdBody::damage(std::vector<float>& out) const {
   // 1 - intact weight / initial weight, the weight of a bond being its partial-volume factor
   const int n = m.n();
   const double* weight = m.class_weight.data();
-#pragma omp parallel for schedule(static) if (n >= 4096)
-  for (int i = 0; i < n; ++i) {
-    double intact = 0.0;
-    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += b.broken[k] ? 0.0 : weight[b.length_class[k]];
-    const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
-    out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
-  }
+  parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      double intact = 0.0;
+      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += b.broken[k] ? 0.0 : weight[b.length_class[k]];
+      const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
+      out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
+    }
+  });
 }
 
 void PdBody::max_stretch(const Eigen::VectorXd& q, std::vector<float>& out) const {

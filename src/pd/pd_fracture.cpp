@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/parallel_chunks.h"
 #include "pd/pd_body_impl.h"
 
 namespace periflex {
@@ -90,13 +91,14 @@ void PdBody::save_state(FlexState& out) const {
   uint64_t* bits = out.broken_bits.data();
   const uint8_t* broken = b.broken.data();
   const int64_t words = static_cast<int64_t>(out.broken_bits.size());
-#pragma omp parallel for schedule(static) if (count >= (1 << 20))
-  for (int64_t w = 0; w < words; ++w) {
-    uint64_t word = 0;
-    const int64_t end = std::min<int64_t>(64, count - 64 * w);
-    for (int64_t k = 0; k < end; ++k) word |= static_cast<uint64_t>(broken[64 * w + k] != 0) << k;
-    bits[w] = word;
-  }
+  parallel_chunks(words, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t w = begin; w < end; ++w) {
+      uint64_t word = 0;
+      const int64_t last = std::min<int64_t>(64, count - 64 * w);
+      for (int64_t k = 0; k < last; ++k) word |= static_cast<uint64_t>(broken[64 * w + k] != 0) << k;
+      bits[w] = word;
+    }
+  });
   out.broken_pairs = m.broken_pairs;
   out.pending_broken = m.pending_broken;
   out.pending_energy = m.pending_energy;

@@ -1,10 +1,12 @@
 // The particle rows of a peridynamic body's force, energy and state loops, in fixed blocks handed
-// to the OpenMP threads as they become free. Block boundaries do not depend on the thread count,
+// to the team's threads as they become free (core/thread_pool.h). Block boundaries do not depend on the thread count,
 // and every row is computed the same way whichever thread takes it, so results do not depend on
 // the thread count or the schedule. Shared by the bond-based and state-based kernels.
 #pragma once
 
 #include <algorithm>
+
+#include "core/thread_pool.h"
 
 namespace periflex {
 
@@ -26,8 +28,10 @@ void for_row_blocks(int n, Fn&& fn) {
     return;
   }
   const int blocks = (n + kRowsPerBlock - 1) / kRowsPerBlock;
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int c = 0; c < blocks; ++c) fn(c * kRowsPerBlock, std::min(n, (c + 1) * kRowsPerBlock));
+  parallel_for(blocks, [&](int64_t c) {
+    const int begin = static_cast<int>(c) * kRowsPerBlock;
+    fn(begin, std::min(n, begin + kRowsPerBlock));
+  });
 }
 
 }  // namespace periflex

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel_chunks.h"
 
 namespace periflex {
 
@@ -139,12 +140,13 @@ void Simulation::fill_snapshot(Snapshot& out) const {
     const int n = flex->particle_count();
     out.bonds_intact.resize(at + n);
     uint16_t* intact = out.bonds_intact.data() + at;
-#pragma omp parallel for schedule(static) if (n >= 4096)
-    for (int i = 0; i < n; ++i) {
-      int64_t count = 0;
-      for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) count += bonds.broken[k] ? 0 : 1;
-      intact[i] = static_cast<uint16_t>(std::min<int64_t>(count, 65535));
-    }
+    parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) {
+        int64_t count = 0;
+        for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) count += bonds.broken[k] ? 0 : 1;
+        intact[i] = static_cast<uint16_t>(std::min<int64_t>(count, 65535));
+      }
+    });
     if (flex->bond_count() < kDrawnBondLimit) {
       flex->bond_pairs(pairs, kDrawnBondLimit);
       for (const auto& [i, j] : pairs) out.bond_pairs.emplace_back(first + i, first + j);

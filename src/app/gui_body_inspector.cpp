@@ -15,9 +15,7 @@ void GuiApp::inspect_body(int fb_width) {
   // the simulation thread adds the reactions to its snapshots only while they are shown
   const bool wanted = inspected_body_ > 0;
   if (wanted != reactions_asked_) {
-    SimCommand c = SimCommand::make(SimCommand::Kind::kReactions);
-    c.with_reactions = wanted;
-    send(std::move(c));
+    send(SimCommand{command::Reactions{wanted}});
     reactions_asked_ = wanted;
   }
   if (inspected_body_ <= 0 || !snap.geometry || inspected_body_ >= static_cast<int>(snap.bodies.size()) ||

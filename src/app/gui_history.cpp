@@ -10,7 +10,6 @@
 namespace periflex {
 
 void GuiApp::panel_history() {
-  using Kind = SimCommand::Kind;
   const WorkerStatus& s = status_;
   // the timeline spans the states kept and the live instant; the handle sits at the time shown
   const double lo = s.history_states ? s.history_first : s.time;
@@ -19,9 +18,7 @@ void GuiApp::panel_history() {
   ImGui::PushItemWidth(-1.0f);
   ImGui::BeginDisabled(s.history_states == 0 || hi <= lo);
   if (ImGui::SliderScalar("##timeline", ImGuiDataType_Double, &shown, &lo, &hi, "t = %.6g s")) {
-    SimCommand c = SimCommand::make(Kind::kScrub);
-    c.number = shown;
-    send(c);
+    send(SimCommand{command::Scrub{shown}});
   }
   ImGui::EndDisabled();
   dump_.note_item("history_slider");
@@ -30,7 +27,7 @@ void GuiApp::panel_history() {
 
   // resuming drops the states after the one shown: its future is computed again
   ImGui::BeginDisabled(s.scrub < 0);
-  if (ImGui::Button("Resume from here")) send(SimCommand::make(Kind::kResume));
+  if (ImGui::Button("Resume from here")) send(SimCommand{command::Resume{}});
   ImGui::EndDisabled();
   dump_.note_item("history_resume");
   ImGui::SameLine();
@@ -65,10 +62,7 @@ void GuiApp::panel_history() {
   dump_.note_item("history_budget");
   history_edited_ = history_edited_ || ImGui::IsItemActive();
   if (changed) {
-    SimCommand c = SimCommand::make(Kind::kHistory);
-    c.number = std::max(0.0, history_interval_);
-    c.history_budget_mb = std::clamp(history_budget_mb_, 1, 1 << 20);
-    send(c);
+    send(SimCommand{command::History{std::max(0.0, history_interval_), std::clamp(history_budget_mb_, 1, 1 << 20)}});
   }
 }
 

@@ -30,7 +30,6 @@ std::string format_deform(float factor) {
 
 void GuiApp::handle_input(int fb_width, int fb_height) {
   ImGuiIO& io = ImGui::GetIO();
-  using Kind = SimCommand::Kind;
   // every press since the last frame, however short (key_presses.h); none while a text field
   // has the keyboard
   for (const KeyPress& k : take_key_presses()) {
@@ -41,21 +40,17 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
     // state back (both repeat when held)
     if (k.key == GLFW_KEY_RIGHT) {
       if (status_.scrub >= 0) {
-        SimCommand c = SimCommand::make(Kind::kScrubStep, "key");
-        c.direction = SimCommand::Direction::kForward;
-        send(c);
+        send(SimCommand{command::ScrubStep{command::ScrubStep::Direction::kForward}, "key"});
       } else {
-        send(SimCommand::make(Kind::kStep, "key"));
+        send(SimCommand{command::Step{}, "key"});
       }
     }
     if (k.key == GLFW_KEY_LEFT) {
-      SimCommand c = SimCommand::make(Kind::kScrubStep, "key");
-      c.direction = SimCommand::Direction::kBack;
-      send(c);
+      send(SimCommand{command::ScrubStep{command::ScrubStep::Direction::kBack}, "key"});
     }
     if (k.repeat) continue;
-    if (k.key == GLFW_KEY_SPACE) send(SimCommand::make(Kind::kToggleRun, "key"));
-    if (k.key == GLFW_KEY_BACKSPACE) send(SimCommand::make(Kind::kReset, "key"));
+    if (k.key == GLFW_KEY_SPACE) send(SimCommand{command::ToggleRun{}, "key"});
+    if (k.key == GLFW_KEY_BACKSPACE) send(SimCommand{command::Reset{}, "key"});
     if (k.key == GLFW_KEY_F && !ctrl) {
       fit_pending_ = true;
       follow_ = -1;
@@ -102,16 +97,13 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
   // a grab lasts until the left button is released, wherever the mouse goes; Shift held makes
   // it a hard one (faster and stronger), taken or let go at any time during the drag
   if (grabbing_ && grab_by_mouse_) {
-    SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
       grabbing_ = false;
-      send(c);
+      send(SimCommand{command::MouseSpring{}, "mouse"});
     } else if (io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f || io.KeyShift != grab_spring_.hard) {
-      c.new_grab = false;
       grab_spring_.target = world;
       grab_spring_.hard = io.KeyShift;
-      c.spring = grab_spring_;
-      send(c);
+      send(SimCommand{command::MouseSpring{grab_spring_, false}, "mouse"});
     }
   }
   // a knife drag lasts until the button is released, wherever the mouse goes
@@ -141,10 +133,7 @@ void GuiApp::handle_input(int fb_width, int fb_height) {
       grabbing_ = true;
       grab_by_mouse_ = true;
       grab_spring_ = *spring;
-      SimCommand c = SimCommand::make(Kind::kMouseSpring, "mouse");
-      c.spring = spring;
-      c.new_grab = true;
-      send(c);
+      send(SimCommand{command::MouseSpring{spring, true}, "mouse"});
     }
   }
 }

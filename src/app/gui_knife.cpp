@@ -27,11 +27,7 @@ void GuiApp::knife_input(const Vec2& world) {
   const double window_height = std::max(1.0f, ImGui::GetIO().DisplaySize.y);
   const double pixels = (knife_to_ - knife_from_).norm() / std::max(1e-300, camera_.view_height) * window_height;
   if (pixels < kShortestCutPixels) return;
-  SimCommand c = SimCommand::make(SimCommand::Kind::kCut, "mouse");
-  c.from = knife_from_;
-  c.to = knife_to_;
-  c.drawn_x = renderer_->drawn_x();
-  c.drawn_y = renderer_->drawn_y();
+  SimCommand c{command::Cut{knife_from_, knife_to_, renderer_->drawn_x(), renderer_->drawn_y()}, "mouse"};
   char text[160];
   std::snprintf(text, sizeof text, "knife from (%.6g, %.6g) to (%.6g, %.6g) m", knife_from_.x(), knife_from_.y(),
                 knife_to_.x(), knife_to_.y());

@@ -78,21 +78,20 @@ void GuiApp::draw_panels(int fb_width, int fb_height) {
 }
 
 void GuiApp::panel_simulation() {
-  using Kind = SimCommand::Kind;
   ImGui::Text("%s", status_.scene_name.c_str());
   ImGui::Text("t = %.6g s of %.6g   step %ld", status_.time, status_.end_time, status_.step);
   if (ImGui::Button(status_.running ? "Pause" : "Run", ImVec2(60, 0))) {
-    send(SimCommand::make(Kind::kToggleRun));
+    send(SimCommand{command::ToggleRun{}});
   }
   dump_.note_item("run_pause");
   ImGui::SameLine();
-  if (ImGui::Button("Step")) send(SimCommand::make(Kind::kStep));
+  if (ImGui::Button("Step")) send(SimCommand{command::Step{}});
   dump_.note_item("step");
   ImGui::SameLine();
-  if (ImGui::Button("Reset")) send(SimCommand::make(Kind::kReset));
+  if (ImGui::Button("Reset")) send(SimCommand{command::Reset{}});
   dump_.note_item("reset");
   ImGui::SameLine();
-  if (ImGui::Button("Reload")) send(SimCommand::make(Kind::kReload));
+  if (ImGui::Button("Reload")) send(SimCommand{command::Reload{}});
   // the knife: a left-drag over the picture cuts the bonds it crosses (undone by Reset)
   if (has_particles(worker_.snapshot())) {
     ImGui::SameLine();
@@ -111,9 +110,7 @@ void GuiApp::panel_simulation() {
   step_count_ = std::clamp(step_count_, 1, 100000000);
   ImGui::SameLine();
   if (ImGui::Button("Step N")) {
-    SimCommand c = SimCommand::make(Kind::kStep);
-    c.steps = step_count_;
-    send(c);
+    send(SimCommand{command::Step{step_count_}});
   }
   dump_.note_item("step_n");
   if (step_to_time_ <= 0.0 && status_.end_time > 0.0) step_to_time_ = status_.end_time / 10.0;
@@ -121,9 +118,7 @@ void GuiApp::panel_simulation() {
   dump_.note_item("step_to_time");
   ImGui::SameLine();
   if (ImGui::Button("Step to t")) {
-    SimCommand c = SimCommand::make(Kind::kStepTo);
-    c.number = step_to_time_;
-    send(c);
+    send(SimCommand{command::StepTo{step_to_time_}});
   }
   dump_.note_item("step_to");
   ImGui::PopItemWidth();
@@ -141,9 +136,7 @@ void GuiApp::panel_simulation() {
   if (ImGui::BeginCombo("speed", speed_label(status_.speed).c_str())) {
     for (int i = 0; i < kSpeedCount; ++i) {
       if (ImGui::Selectable(speed_label(kSpeeds[i]).c_str(), i == current)) {
-        SimCommand c = SimCommand::make(Kind::kSetSpeed);
-        c.number = kSpeeds[i];
-        send(c);
+        send(SimCommand{command::SetSpeed{kSpeeds[i]}});
       }
     }
     ImGui::EndCombo();
@@ -162,9 +155,7 @@ void GuiApp::panel_simulation() {
     }
     ImGui::SameLine();
     if (ImGui::Button("Open") && scene_choice_ >= 0) {
-      SimCommand c = SimCommand::make(Kind::kLoadScene);
-      c.text = resolve_scene_path(scenes_[scene_choice_]);
-      send(c);
+      send(SimCommand{command::LoadScene{resolve_scene_path(scenes_[scene_choice_])}});
     }
   }
   if (!status_.load_error.empty()) error_text("Load failed (old scene kept): " + status_.load_error);
@@ -234,9 +225,7 @@ void GuiApp::panel_parameters() {
                       (particles || status_.rejected_key == "dt" || status_.rejected_key == "integrator");
   if (!status_.rejected_message.empty() && !placed) error_text("refused: " + status_.rejected_message);
   if (changed) {
-    SimCommand c = SimCommand::make(SimCommand::Kind::kApplySettings);
-    c.settings = edit;
-    send(c);
+    send(SimCommand{command::ApplySettings{edit}});
     // a refusal of this step for the stability limit is answered with the offer to run it anyway
     if (dt_typed && critical > 0.0) unstable_offer_ = UnstableOffer{edit, sent_};
   }
@@ -449,10 +438,9 @@ void GuiApp::unstable_step_modal() {
                      "divergence check stops the run with a numerical-failure diagnostic.");
   ImGui::PopTextWrapPos();
   if (ImGui::Button("Run past the limit")) {
-    SimCommand c = SimCommand::make(SimCommand::Kind::kApplySettings);
-    c.settings = unstable_asked_;
-    c.settings.allow_unstable = true;
-    send(c);
+    LiveSettings past_the_limit = unstable_asked_;
+    past_the_limit.allow_unstable = true;
+    send(SimCommand{command::ApplySettings{past_the_limit}});
     ImGui::CloseCurrentPopup();
   }
   dump_.note_item("unstable_confirm");
@@ -480,7 +468,7 @@ void GuiApp::numerical_error_modal() {
     }
     ImGui::TextUnformatted("The simulation is paused.");
     if (ImGui::Button("Reset")) {
-      send(SimCommand::make(SimCommand::Kind::kReset));
+      send(SimCommand{command::Reset{}});
       ImGui::CloseCurrentPopup();
     }
     ImGui::SameLine();

@@ -68,9 +68,7 @@ void GuiApp::start_recording(const std::string& path, double interval, double fp
   record_camera_ = picture_camera(camera_, record_height_);
   record_rows_.clear();
   record_message_ = "recording to " + path;
-  SimCommand c = SimCommand::make(SimCommand::Kind::kRecord);
-  c.number = interval;
-  send(c);
+  send(SimCommand{command::Record{interval}});
 }
 
 RgbaImage GuiApp::draw_picture(const Snapshot& frame, const Camera& camera, unsigned fbo, int width, int height,
@@ -166,9 +164,7 @@ void GuiApp::pump_recording() {
 
 void GuiApp::stop_recording() {
   if (!writer_) return;
-  SimCommand c = SimCommand::make(SimCommand::Kind::kRecord);
-  c.number = 0.0;
-  send(c);
+  send(SimCommand{command::Record{0.0}});
   // frames already published are still written
   std::unique_ptr<BackgroundFrameWriter> writer = std::move(writer_);
   Snapshot frame;

@@ -64,45 +64,31 @@ bool GuiApp::run_script() {
 }
 
 void GuiApp::execute(const ScriptAction& a) {
-  using Kind = SimCommand::Kind;
   const std::string& verb = a.verb;
-  const auto command = [](Kind kind) { return SimCommand::make(kind, "script"); };
+  const auto send_action = [this](SimAction action) { send(SimCommand{std::move(action), "script"}); };
   log_.add("script @" + std::to_string(a.frame) + ": " + a.text);
-  if (verb == "run" || verb == "resume") send(command(Kind::kRun));
-  else if (verb == "pause") send(command(Kind::kPause));
+  if (verb == "run" || verb == "resume") send_action(command::Run{});
+  else if (verb == "pause") send_action(command::Pause{});
   else if (verb == "step") {
-    SimCommand c = command(Kind::kStep);
-    c.steps = a.args.empty() ? 1 : std::atoi(a.args[0].c_str());
-    send(c);
+    send_action(command::Step{a.args.empty() ? 1 : std::atoi(a.args[0].c_str())});
   } else if (verb == "history") {
-    SimCommand c = command(Kind::kHistory);
-    c.number = std::atof(a.args[0].c_str());
-    c.history_budget_mb = a.args.size() > 1 ? std::atoi(a.args[1].c_str()) : static_cast<int>(status_.history_budget >> 20);
-    send(c);
+    const int budget_mb =
+        a.args.size() > 1 ? std::atoi(a.args[1].c_str()) : static_cast<int>(status_.history_budget >> 20);
+    send_action(command::History{std::atof(a.args[0].c_str()), budget_mb});
   } else if (verb == "back") {
-    SimCommand c = command(Kind::kScrubStep);
-    c.direction = SimCommand::Direction::kBack;
-    for (int k = a.args.empty() ? 1 : std::atoi(a.args[0].c_str()); k > 0; --k) send(c);
+    for (int k = a.args.empty() ? 1 : std::atoi(a.args[0].c_str()); k > 0; --k)
+      send_action(command::ScrubStep{command::ScrubStep::Direction::kBack});
   } else if (verb == "scrub") {
-    SimCommand c = command(Kind::kScrub);
-    c.number = std::atof(a.args[0].c_str());
-    send(c);
-  } else if (verb == "reset") send(command(Kind::kReset));
-  else if (verb == "reload") send(command(Kind::kReload));
+    send_action(command::Scrub{std::atof(a.args[0].c_str())});
+  } else if (verb == "reset") send_action(command::Reset{});
+  else if (verb == "reload") send_action(command::Reload{});
   else if (verb == "scene") {
-    SimCommand c = command(Kind::kLoadScene);
-    c.text = resolve_scene_path(a.args[0]);
-    send(c);
+    send_action(command::LoadScene{resolve_scene_path(a.args[0])});
   } else if (verb == "set") {
     const size_t eq = a.args[0].find('=');
-    SimCommand c = command(Kind::kSetParameter);
-    c.text = a.args[0].substr(0, eq);
-    c.value = a.args[0].substr(eq + 1);
-    send(c);
+    send_action(command::SetParameter{a.args[0].substr(0, eq), a.args[0].substr(eq + 1)});
   } else if (verb == "speed") {
-    SimCommand c = command(Kind::kSetSpeed);
-    c.number = a.args[0] == "max" ? 0.0 : std::atof(a.args[0].c_str());
-    send(c);
+    send_action(command::SetSpeed{a.args[0] == "max" ? 0.0 : std::atof(a.args[0].c_str())});
   } else if (verb == "colormap") {
     const auto names = renderer_->colormap_names();
     if (std::find(names.begin(), names.end(), a.args[0]) == names.end()) {
@@ -160,13 +146,10 @@ void GuiApp::execute(const ScriptAction& a) {
       return;
     }
     grab_spring_.target = Vec2(std::atof(a.args[0].c_str()), std::atof(a.args[1].c_str()));
-    SimCommand c = command(Kind::kMouseSpring);
-    c.spring = grab_spring_;
-    c.new_grab = false;  // a move, not a new grab
-    send(c);
+    send_action(command::MouseSpring{grab_spring_, false});  // a move, not a new grab
   } else if (verb == "release") {
     grabbing_ = false;
-    send(command(Kind::kMouseSpring));
+    send_action(command::MouseSpring{});
   } else if (verb == "plot") {
     // the plot window with column Y (Y1+Y2+...: several series, as "+ series" adds them)
     // against X (time by default); a column the scene lacks falls back as in the window
@@ -182,12 +165,7 @@ void GuiApp::execute(const ScriptAction& a) {
     // the knife from (X0, Y0) to (X1, Y1), as a mouse drag cuts
     knife_from_ = Vec2(std::atof(a.args[0].c_str()), std::atof(a.args[1].c_str()));
     knife_to_ = Vec2(std::atof(a.args[2].c_str()), std::atof(a.args[3].c_str()));
-    SimCommand c = command(Kind::kCut);
-    c.from = knife_from_;
-    c.to = knife_to_;
-    c.drawn_x = renderer_->drawn_x();
-    c.drawn_y = renderer_->drawn_y();
-    send(std::move(c));
+    send_action(command::Cut{knife_from_, knife_to_, renderer_->drawn_x(), renderer_->drawn_y()});
   } else if (verb == "inspect") {
     inspected_body_ = -1;
     const Snapshot& s = worker_.snapshot();
@@ -222,10 +200,7 @@ void GuiApp::grab(const ScriptAction& a) {
   grabbing_ = true;
   grab_by_mouse_ = false;
   grab_spring_ = *spring;
-  SimCommand c = SimCommand::make(SimCommand::Kind::kMouseSpring, "script");
-  c.spring = spring;
-  c.new_grab = true;
-  send(c);
+  send(SimCommand{command::MouseSpring{spring, true}, "script"});
 }
 
 void GuiApp::evaluate_expectation(const ScriptAction& a) {

@@ -97,14 +97,14 @@ void GuiApp::watch_scene_file() {
   // saved again: reload through the worker's loader, which checks the scene and its limits
   if (scene_watch_.changed(steady_seconds())) {
     log_.add("scene file " + scene_watch_.path() + " changed on disk: reloading");
-    send(SimCommand::make(SimCommand::Kind::kReload, "file"));
+    send(SimCommand{command::Reload{}, "file"});
     return;
   }
   // a point file, image or drawing the scene reads, saved again: the same reload
   for (FileWatch& watch : geometry_watches_) {
     if (!watch.changed(steady_seconds())) continue;
     log_.add("geometry file " + watch.path() + " changed on disk: reloading");
-    send(SimCommand::make(SimCommand::Kind::kReload, "file"));
+    send(SimCommand{command::Reload{}, "file"});
     return;
   }
 }

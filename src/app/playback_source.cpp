@@ -112,8 +112,7 @@ ModelFactory PlaybackSource::factory() {
 void PlaybackSource::request(long index, SimWorker& worker, const char* origin) {
   index = std::clamp(index, 0L, static_cast<long>(times_.size()) - 1);
   cursor_->requested = index;
-  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, origin);
-  worker.send(std::move(step));
+  worker.send(SimCommand{command::Step{}, origin});
 }
 
 bool PlaybackSource::on_key(int key, SimWorker& worker) {

@@ -4,61 +4,77 @@
 
 #include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "solve/simulation.h"
 
 namespace periflex {
 
-struct SimCommand {
-  enum class Kind {
-    kRun,            // start or continue stepping
-    kPause,          // stop stepping after the current step
-    kToggleRun,      // run when paused, pause when running
-    kStep,           // pause, then take `steps` steps
-    kStepTo,         // pause, then step until the time reaches `number` (the first step at or after it)
-    kReset,          // rebuild the current scene from memory, keeping the live settings
-    kReload,         // re-read the scene file from disk (keeps the old model if it fails)
-    kLoadScene,      // switch to the scene file in `text`
-    kApplySettings,  // replace the live settings with `settings`
-    kSetParameter,   // set one live setting by name: `text` = key, `value` = value
-    kSetSpeed,       // real-time factor `number`; <= 0 runs as fast as possible
-    kMouseSpring,    // set (or, when `spring` is empty, release) the mouse spring; `new_grab`: a
-                     // grab, not a drag of the one held (for the log)
-    kCut,            // a knife: cut the bonds the segment `from` .. `to` crosses (drawn_x, drawn_y:
-                     // the particles where the window draws them)
-    kReactions,      // snapshots carry the joints' reactions (`with_reactions`) or not
-    kRecord,         // publish recording snapshots every `number` simulated seconds; 0 stops
-    kHistory,        // keep a state every `number` simulated seconds (<= 0: off) within
-                     // `history_budget_mb` MB
-    kScrub,          // pause and show the history state nearest the time `number`
-    kScrubStep,      // pause and show the history state next to the one shown, in `direction`
-    kResume,         // drop the history after the state shown and run from it
-    kQuit,           // end the simulation thread
-  };
-  Kind kind = Kind::kPause;
-  // what some kinds carry, each field for one kind only
-  int steps = 1;                 // kStep: how many steps (at least 1)
-  bool new_grab = false;         // kMouseSpring: a new grab rather than a drag of the one held
-  bool with_reactions = false;   // kReactions: snapshots carry the joints' reactions
-  int history_budget_mb = 1;     // kHistory: the history's memory budget in MB (at least 1)
-  enum class Direction { kBack, kForward };
-  Direction direction = Direction::kForward;  // kScrubStep: back or forward in the history
-  std::string text;
-  std::string value;
-  double number = 0.0;
+// One type per request, each carrying only what it needs.
+namespace command {
+struct Run {};        // start or continue stepping
+struct Pause {};      // stop stepping after the current step
+struct ToggleRun {};  // run when paused, pause when running
+struct Step {         // pause, then take `steps` steps (at least 1)
+  int steps = 1;
+};
+struct StepTo {  // pause, then step until the time reaches `time` (the first step at or after it)
+  double time = 0.0;
+};
+struct Reset {};   // rebuild the current scene from memory, keeping the live settings
+struct Reload {};  // re-read the scene file from disk (keeps the old model if it fails)
+struct LoadScene {  // switch to the scene file at `path`
+  std::string path;
+};
+struct ApplySettings {  // replace the live settings
   LiveSettings settings;
-  std::optional<MouseSpring> spring;
+};
+struct SetParameter {  // set one live setting by name (set_live_parameter below)
+  std::string key, value;
+};
+struct SetSpeed {  // real-time factor; <= 0 runs as fast as possible
+  double factor = 1.0;
+};
+struct MouseSpring {  // set the mouse spring, or release it when `spring` is empty
+  std::optional<periflex::MouseSpring> spring;
+  bool new_grab = false;  // a grab, not a drag of the one held (for the log)
+};
+struct Cut {  // a knife: cut the bonds the segment from .. to crosses
   Vec2 from = Vec2::Zero(), to = Vec2::Zero();
-  std::vector<float> drawn_x, drawn_y;
-  std::string origin = "ui";  // who asked, for the log: "ui", "key", "mouse", "script"
+  std::vector<float> drawn_x, drawn_y;  // the particles where the window draws them
+};
+struct Reactions {  // snapshots carry the joints' reactions or not
+  bool with_reactions = false;
+};
+struct Record {  // publish recording snapshots every `interval` simulated seconds; 0 stops
+  double interval = 0.0;
+};
+struct History {  // keep a state every `interval` simulated seconds (<= 0: off) within `budget_mb`
+  double interval = 0.0;
+  int budget_mb = 1;  // at least 1
+};
+struct Scrub {  // pause and show the history state nearest the time `time`
+  double time = 0.0;
+};
+struct ScrubStep {  // pause and show the history state next to the one shown
+  enum class Direction { kBack, kForward };
+  Direction direction = Direction::kForward;
+};
+struct Resume {};  // drop the history after the state shown and run from it
+struct Quit {};    // end the simulation thread
+}  // namespace command
 
-  static SimCommand make(Kind kind, std::string origin = "ui") {
-    SimCommand c;
-    c.kind = kind;
-    c.origin = std::move(origin);
-    return c;
-  }
+using SimAction = std::variant<command::Run, command::Pause, command::ToggleRun, command::Step, command::StepTo,
+                               command::Reset, command::Reload, command::LoadScene, command::ApplySettings,
+                               command::SetParameter, command::SetSpeed, command::MouseSpring, command::Cut,
+                               command::Reactions, command::Record, command::History, command::Scrub,
+                               command::ScrubStep, command::Resume, command::Quit>;
+
+// A request and who made it.
+struct SimCommand {
+  SimAction action;
+  std::string origin = "ui";  // who asked, for the log: "ui", "key", "mouse", "script"
 };
 
 // Sets one live setting from text, as scripts and `set key=value` write it.

@@ -21,25 +21,6 @@ constexpr double kRateWindow = 0.5;
 // a run more than this many wall seconds behind its pace drops the debt instead of bursting
 constexpr double kMaxLag = 0.25;
 
-std::string describe_speed(double speed) {
-  if (speed <= 0.0) return "as fast as possible";
-  char text[48];
-  std::snprintf(text, sizeof text, "%gx real time", speed);
-  return text;
-}
-
-std::string describe_settings(const LiveSettings& s) {
-  static const char* methods[] = {"none", "baumgarte", "projection"};
-  char text[256];
-  std::snprintf(text, sizeof text,
-                "integrator=%s dt=%g correction=%s alpha=%g beta=%g tolerance=%g bond_damping=%g "
-                "global_damping=%g fracture=%s%s",
-                s.integrator.c_str(), s.dt, methods[static_cast<int>(s.correction.method)],
-                s.correction.alpha, s.correction.beta, s.correction.tolerance, s.bond_damping,
-                s.global_damping, s.fracture ? "on" : "off", s.allow_unstable ? " (dt past the stable step allowed)" : "");
-  return text;
-}
-
 }  // namespace
 
 SimWorker::SimWorker(ModelFactory factory, const std::string& scene_path,
@@ -72,7 +53,7 @@ void SimWorker::stop() {
     std::lock_guard<std::mutex> lock(record_mutex_);
     quitting_ = true;
   }
-  send(SimCommand::make(SimCommand::Kind::kQuit));
+  send(SimCommand{command::Quit{}});
   record_space_.notify_all();
   thread_.join();
 }
@@ -211,181 +192,6 @@ void SimWorker::load_from_disk(const std::string& path, const std::vector<std::s
   }
 }
 
-void SimWorker::apply(SimCommand& c) {
-  using Kind = SimCommand::Kind;
-  ++applied_;
-  const std::string by = " (" + c.origin + ")";
-  switch (c.kind) {
-    case Kind::kRun:
-    case Kind::kToggleRun:
-      if (c.kind == Kind::kToggleRun && running_) {
-        running_ = false;
-        log_.add("pause at t = " + std::to_string(model_->time()) + by);
-        break;
-      }
-      leave_scrub(("run" + by).c_str());
-      if (numerical_error_) {
-        log_.add("cannot run: the last step failed; reset, reload or change a setting first" + by);
-        break;
-      }
-      running_ = true;
-      pending_steps_ = 0;
-      reanchor();
-      log_.add("run, " + describe_speed(speed_) + by);
-      break;
-    case Kind::kPause:
-      running_ = false;
-      pending_steps_ = 0;
-      log_.add("pause at t = " + std::to_string(model_->time()) + by);
-      break;
-    case Kind::kStep:
-      if (numerical_error_) {
-        log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
-        break;
-      }
-      leave_scrub(("step" + by).c_str());
-      running_ = false;
-      pending_steps_ += c.steps > 0 ? c.steps : 1;
-      log_.add("step x" + std::to_string(c.steps > 0 ? c.steps : 1) + by);
-      break;
-    case Kind::kStepTo: {
-      if (numerical_error_) {
-        log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
-        break;
-      }
-      leave_scrub(("step to t" + by).c_str());
-      running_ = false;
-      // whole steps of dt from now, the last one at or after the time asked (a step of dt
-      // that would overshoot it by less than a billionth of dt is not taken)
-      const double dt = model_->settings().dt;
-      const double remaining = c.number - model_->time();
-      const double steps = dt > 0.0 && remaining > 0.0 ? std::ceil(remaining / dt - 1e-9) : 0.0;
-      pending_steps_ = static_cast<int>(std::min(steps, 2e9));
-      log_.add("step to t = " + std::to_string(c.number) + ": " + std::to_string(pending_steps_) + " steps" + by);
-      break;
-    }
-    case Kind::kReset:
-      try {
-        // the model puts back the state it started in; one that cannot is built again
-        if (model_->reset_to_start())
-          restarted(scene_.name, ("reset" + by).c_str());
-        else
-          rebuild(scene_, true, ("reset" + by).c_str());
-      } catch (const std::exception& e) {
-        log_.add("reset failed, keeping the current model: " + std::string(e.what()));
-      }
-      break;
-    case Kind::kReload:
-      load_from_disk(scene_path_, overrides_, ("reload of " + scene_path_ + by).c_str());
-      break;
-    case Kind::kLoadScene:
-      // overrides given on the command line belong to the first scene only
-      load_from_disk(c.text, {}, ("switch to " + c.text + by).c_str());
-      break;
-    case Kind::kApplySettings:
-      try {
-        model_->apply(c.settings);
-        numerical_error_.reset();
-        numerical_message_.clear();
-        rejected_key_.clear();
-        rejected_message_.clear();
-        log_.add("settings: " + describe_settings(model_->settings()) + by);
-      } catch (const std::exception& e) {
-        note_rejection(e);
-        log_.add("settings rejected: " + std::string(e.what()) + by);
-      }
-      break;
-    case Kind::kSetParameter: {
-      LiveSettings s = model_->settings();
-      const std::string problem = set_live_parameter(s, c.text, c.value);
-      if (!problem.empty()) {
-        rejected_key_ = c.text;
-        rejected_message_ = problem;
-        log_.add("set " + c.text + "=" + c.value + " rejected: " + problem + by);
-        break;
-      }
-      try {
-        model_->apply(s);
-        numerical_error_.reset();
-        numerical_message_.clear();
-        rejected_key_.clear();
-        rejected_message_.clear();
-        log_.add("set " + c.text + "=" + c.value + by);
-      } catch (const std::exception& e) {
-        note_rejection(e);
-        log_.add("set " + c.text + "=" + c.value + " rejected: " + e.what() + by);
-      }
-      break;
-    }
-    case Kind::kSetSpeed:
-      speed_ = c.number;
-      reanchor();
-      log_.add("speed " + describe_speed(speed_) + by);
-      break;
-    case Kind::kMouseSpring:
-      mouse_stiffness_ = model_->set_mouse_spring(c.spring);
-      // dragging sends a command per frame: log only grabbing and releasing
-      if (!c.spring) log_.add("mouse spring released" + by);
-      else if (c.new_grab) {
-        log_.add(c.spring->body >= 0 ? "grab body " + std::to_string(c.spring->body) + by
-                                     : "grab particle " + std::to_string(c.spring->particle) + by);
-      }
-      break;
-    case Kind::kReactions:
-      model_->set_reactions(c.with_reactions);
-      break;
-    case Kind::kCut: {
-      // paused or running, between two steps; a cut into a state shown changes its future
-      leave_scrub(("knife" + by).c_str());
-      const long cut = model_->cut_bonds(c.from, c.to, c.drawn_x, c.drawn_y);
-      log_.add("knife: " + std::to_string(cut) + (cut == 1 ? " bond cut" : " bonds cut") + by);
-      break;
-    }
-    case Kind::kRecord:
-      record_interval_ = c.number > 0.0 ? c.number : 0.0;
-      record_start_ = model_->time();
-    record_marks_ = 0;
-      log_.add(record_interval_ > 0.0 ? "recording every " + std::to_string(record_interval_) + " s" + by
-                                      : "recording stopped" + by);
-      // the first frame is the state at the moment recording starts
-      record_if_due();
-      break;
-    case Kind::kHistory: {
-      // the user's cadence and budget hold for every scene from now on
-      history_auto_ = false;
-      const size_t budget = static_cast<size_t>(std::max(1, c.history_budget_mb)) << 20;
-      history_.configure(c.number, budget, model_->time());
-      log_.add((history_.interval() > 0.0 ? "history: a state every " + std::to_string(history_.interval()) + " s"
-                                          : std::string("history: off")) +
-               ", budget " + std::to_string(budget >> 20) + " MB" + by);
-      if (scrub_ < 0 && history_.due(model_->time())) save_history_if_due();
-      break;
-    }
-    case Kind::kScrub:
-      if (keep_live(by)) {
-        const size_t index = history_.nearest(c.number);
-        if (static_cast<long>(index) != scrub_) scrub_to(index, by);
-      }
-      break;
-    case Kind::kScrubStep:
-      scrub_step(c.direction == SimCommand::Direction::kBack ? -1 : 1, by);
-      break;
-    case Kind::kResume:
-      if (numerical_error_) {
-        log_.add("cannot run: the last step failed; go back in the history, reset or change a setting first" + by);
-        break;
-      }
-      leave_scrub(("resume" + by).c_str());
-      running_ = true;
-      pending_steps_ = 0;
-      reanchor();
-      log_.add("run, " + describe_speed(speed_) + by);
-      break;
-    case Kind::kQuit:
-      break;
-  }
-}
-
 void SimWorker::record_if_due() {
   // frames at fixed simulated times: the first step at or after each mark start + k interval
   // (marks counted, not summed, so they do not drift), one frame however many marks a step crosses
@@ -408,7 +214,7 @@ void SimWorker::loop() {
     // requests first: they land between two steps, in the order they were sent
     bool changed = false;
     for (SimCommand& c : commands_.drain()) {
-      if (c.kind == SimCommand::Kind::kQuit) return;
+      if (std::holds_alternative<command::Quit>(c.action)) return;
       apply(c);
       changed = true;
     }

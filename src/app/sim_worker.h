@@ -141,7 +141,10 @@ class SimWorker {
 
  private:
   void loop();
+  // the requests (sim_worker_commands.cpp): apply one, through the handler of its type
   void apply(SimCommand& command);
+  template <typename Action>
+  void handle(Action& action, const std::string& by);
   void rebuild(const SceneDef& scene, bool keep_settings, const char* what);
   // What follows a new or reset model: paused at its start, errors cleared, the log told.
   void restarted(const std::string& scene_name, const char* what);

@@ -36,8 +36,7 @@ double snapshot_seconds(const SteppedModel& model, Snapshot& s, int count) {
 double worker_steps_per_second(const std::string& scene, bool reactions) {
   EventLog events(false);
   SimWorker worker(simulation_model_factory(), scene, {"solver.end_time=1000"}, events);
-  SimCommand ask = SimCommand::make(SimCommand::Kind::kReactions, "test");
-  ask.with_reactions = reactions;
+  SimCommand ask{command::Reactions{reactions}, "test"};
   worker.send(ask);
   worker.start(true, 0.0);
   // the rate is measured over half-second windows: read it after two of them

@@ -127,9 +127,7 @@ bool wait_until(const SimWorker& worker, const std::function<bool(const WorkerSt
 }
 
 SimCommand set_bond_damping(long value) {
-  SimCommand c = SimCommand::make(SimCommand::Kind::kSetParameter, "test");
-  c.text = "bond_damping";
-  c.value = std::to_string(value);
+  SimCommand c{command::SetParameter{"bond_damping", std::to_string(value)}, "test"};
   return c;
 }
 
@@ -169,8 +167,7 @@ TEST(SimWorker, PausedWorkerTakesExactlyTheStepsAsked) {
   EventLog events(false);
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
-  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.steps = 5;
+  SimCommand step{command::Step{5}, "test"};
   worker.send(step);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 5; }));
   // paused again after the five: no further steps happen
@@ -190,17 +187,16 @@ TEST(SimWorker, StepToTimeStopsAtTheFirstStepAtOrAfterIt) {
   SimWorker worker(fake_factory(log, 3e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
   // 0.1 s is 33.3 steps of 3 ms: the 34th is the first at or after it
-  SimCommand to = SimCommand::make(SimCommand::Kind::kStepTo, "test");
-  to.number = 0.1;
+  SimCommand to{command::StepTo{0.1}, "test"};
   worker.send(to);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 34; }));
   std::this_thread::sleep_for(50ms);
   EXPECT_EQ(worker.status().step, 34);
   EXPECT_FALSE(worker.status().running);
   // a time already passed takes no step; a whole number of steps lands on it
-  to.number = 0.05;
+  std::get<command::StepTo>(to.action).time = 0.05;
   worker.send(to);
-  to.number = 34 * 3e-3 + 6e-3;
+  std::get<command::StepTo>(to.action).time = 34 * 3e-3 + 6e-3;
   worker.send(to);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 36; }));
   std::this_thread::sleep_for(50ms);
@@ -213,14 +209,12 @@ TEST(SimWorker, RefusedSettingIsReportedWithItsKeyUntilOneIsAccepted) {
   EventLog events(false);
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
-  SimCommand bad = SimCommand::make(SimCommand::Kind::kSetParameter, "test");
-  bad.text = "dt";
-  bad.value = "-1";
+  SimCommand bad{command::SetParameter{"dt", "-1"}, "test"};
   worker.send(bad);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return !s.rejected_message.empty(); }));
   EXPECT_EQ(worker.status().rejected_key, "dt");
   SimCommand good = bad;
-  good.value = "2e-3";
+  std::get<command::SetParameter>(good.action).value = "2e-3";
   worker.send(good);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.rejected_message.empty(); }));
   EXPECT_EQ(worker.status().settings.dt, 2e-3);
@@ -255,11 +249,11 @@ TEST(SimWorker, NumericalFailurePausesAndReportsUntilReset) {
   EXPECT_EQ(s.numerical_error->quantity, "kinetic energy");
   EXPECT_NE(s.numerical_message.find("kinetic energy"), std::string::npos);
   // run is refused while the failure stands
-  worker.send(SimCommand::make(SimCommand::Kind::kRun, "test"));
+  worker.send(SimCommand{command::Run{}, "test"});
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& st) { return st.commands_applied >= 1; }));
   EXPECT_FALSE(worker.status().running);
   // reset clears it and starts again from t = 0
-  worker.send(SimCommand::make(SimCommand::Kind::kReset, "test"));
+  worker.send(SimCommand{command::Reset{}, "test"});
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& st) { return st.commands_applied >= 2; }));
   s = worker.status();
   EXPECT_FALSE(s.numerical_error.has_value());
@@ -273,8 +267,7 @@ TEST(SimWorker, BadReloadKeepsTheCurrentSceneAndSaysWhy) {
   EventLog events(false);
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
-  SimCommand load = SimCommand::make(SimCommand::Kind::kLoadScene, "test");
-  load.text = "bad.toml";
+  SimCommand load{command::LoadScene{"bad.toml"}, "test"};
   worker.send(load);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.commands_applied >= 1; }));
   WorkerStatus s = worker.status();
@@ -282,7 +275,7 @@ TEST(SimWorker, BadReloadKeepsTheCurrentSceneAndSaysWhy) {
   EXPECT_EQ(s.scene_generation, 1);
   EXPECT_NE(s.load_error.find("mass must be positive"), std::string::npos);
   // a good switch afterwards clears the message
-  load.text = "b.toml";
+  std::get<command::LoadScene>(load.action).path = "b.toml";
   worker.send(load);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& st) { return st.commands_applied >= 2; }));
   s = worker.status();
@@ -308,11 +301,9 @@ TEST(SimWorker, RecordingPublishesOneFramePerSimulatedInterval) {
   EventLog events(false);
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
-  SimCommand rec = SimCommand::make(SimCommand::Kind::kRecord, "test");
-  rec.number = 4e-3;
+  SimCommand rec{command::Record{4e-3}, "test"};
   worker.send(rec);
-  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.steps = 6;
+  SimCommand step{command::Step{6}, "test"};
   worker.send(step);
   // frames at the start (step 0) and then every 4e-3 s: steps 0 and 4 of the six
   std::vector<long> steps;
@@ -333,15 +324,13 @@ TEST(SimWorker, RecordingGoesOnFromTheStartAfterReset) {
   EventLog events(false);
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 1.0);
-  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.steps = 3;
+  SimCommand step{command::Step{3}, "test"};
   worker.send(step);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 3; }));
-  SimCommand rec = SimCommand::make(SimCommand::Kind::kRecord, "test");
-  rec.number = 2e-3;
+  SimCommand rec{command::Record{2e-3}, "test"};
   worker.send(rec);  // first frame at step 3
-  worker.send(SimCommand::make(SimCommand::Kind::kReset, "test"));  // then one at step 0
-  step.steps = 2;
+  worker.send(SimCommand{command::Reset{}, "test"});  // then one at step 0
+  std::get<command::Step>(step.action).steps = 2;
   worker.send(step);  // and one at step 2
   std::vector<long> steps;
   const auto give_up = std::chrono::steady_clock::now() + 20s;
@@ -363,12 +352,9 @@ TEST(SimWorker, HistoryOffTakesNoStateWhileStepping) {
     {
       SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
       worker.start(false, 0.0);
-      SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
-      history.number = interval;
-      history.history_budget_mb = 64;
+      SimCommand history{command::History{interval, 64}, "test"};
       worker.send(history);
-      SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-      step.steps = 5000;
+      SimCommand step{command::Step{5000}, "test"};
       worker.send(step);
       EXPECT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 5000; }));
       EXPECT_EQ(worker.status().history_interval, interval);
@@ -389,29 +375,23 @@ TEST(SimWorker, ScrubbingShowsKeptStatesAndResumeDropsTheFuture) {
   EventLog events(false);
   SimWorker worker(fake_factory(log, 1e-3), "a.toml", {}, events);
   worker.start(false, 0.0);
-  SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
-  history.number = 0.1;
-  history.history_budget_mb = 64;
+  SimCommand history{command::History{0.1, 64}, "test"};
   worker.send(history);
-  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.steps = 1050;
+  SimCommand step{command::Step{1050}, "test"};
   worker.send(step);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 1050; }));
   // 0, 0.1, ..., 1.0: eleven states
   EXPECT_EQ(worker.status().history_states, 11u);
-  SimCommand back = SimCommand::make(SimCommand::Kind::kScrubStep, "test");
-  back.direction = SimCommand::Direction::kBack;
+  SimCommand back{command::ScrubStep{command::ScrubStep::Direction::kBack}, "test"};
   for (int k = 0; k < 3; ++k) worker.send(back);
   // the live state (1.05) kept, then three back: 0.8
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.scrub >= 0 && s.step == 800; }));
   EXPECT_EQ(worker.status().history_states, 12u);
   EXPECT_FALSE(worker.status().running);
-  SimCommand forward = SimCommand::make(SimCommand::Kind::kScrubStep, "test");
-  forward.direction = SimCommand::Direction::kForward;
+  SimCommand forward{command::ScrubStep{command::ScrubStep::Direction::kForward}, "test"};
   worker.send(forward);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 900; }));
-  SimCommand to = SimCommand::make(SimCommand::Kind::kScrub, "test");
-  to.number = 0.42;
+  SimCommand to{command::Scrub{0.42}, "test"};
   worker.send(to);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 400; }));
   EXPECT_NEAR(worker.status().time, 0.4, 1e-12);
@@ -421,9 +401,9 @@ TEST(SimWorker, ScrubbingShowsKeptStatesAndResumeDropsTheFuture) {
   worker.send(to);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 400; }));
   // resumed: the states after 0.4 are gone, and the run goes on from step 400
-  worker.send(SimCommand::make(SimCommand::Kind::kResume, "test"));
+  worker.send(SimCommand{command::Resume{}, "test"});
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.scrub < 0 && s.running; }));
-  worker.send(SimCommand::make(SimCommand::Kind::kPause, "test"));
+  worker.send(SimCommand{command::Pause{}, "test"});
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return !s.running; }));
   const WorkerStatus s = worker.status();
   EXPECT_GE(s.step, 400);

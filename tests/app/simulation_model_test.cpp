@@ -32,8 +32,7 @@ TEST(SimulationModel, SwitchingToASceneOverItsLimitsKeepsTheCurrentOne) {
   const std::string start = kData + "/scenes/run/falling_body.toml";
   SimWorker worker(simulation_model_factory(), start, {}, events);
   worker.start(false, 1.0);
-  SimCommand load = SimCommand::make(SimCommand::Kind::kLoadScene, "test");
-  load.text = kData + "/scenes/app/plate_over_particle_limit.toml";
+  SimCommand load{command::LoadScene{kData + "/scenes/app/plate_over_particle_limit.toml"}, "test"};
   worker.send(load);
   WorkerStatus s = worker.status();
   for (int k = 0; k < 500 && s.commands_applied < 1; ++k) {
@@ -98,12 +97,9 @@ TEST(SimulationModel, ScrubbingBackAndResumingRepeatsTheRun) {
     }
     return false;
   };
-  SimCommand history = SimCommand::make(SimCommand::Kind::kHistory, "test");
-  history.number = 1.7e-5;   // 42.5 steps of 4e-7 s
-  history.history_budget_mb = 256;
+  SimCommand history{command::History{1.7e-5, 256}, "test"};  // 42.5 steps of 4e-7 s
   worker.send(history);
-  SimCommand step = SimCommand::make(SimCommand::Kind::kStep, "test");
-  step.steps = 1750;  // the crack runs from about step 1600
+  SimCommand step{command::Step{1750}, "test"};  // the crack runs from about step 1600
   worker.send(step);
   ASSERT_TRUE(wait([](const WorkerStatus& s) { return s.step == 1750; }));
   worker.update_snapshot();
@@ -111,8 +107,7 @@ TEST(SimulationModel, ScrubbingBackAndResumingRepeatsTheRun) {
   ASSERT_GT(first.broken_bonds, 0);
 
   // back to the state nearest 3e-4 s (before the crack), shown paused
-  SimCommand scrub = SimCommand::make(SimCommand::Kind::kScrub, "test");
-  scrub.number = 3e-4;
+  SimCommand scrub{command::Scrub{3e-4}, "test"};
   worker.send(scrub);
   ASSERT_TRUE(wait([](const WorkerStatus& s) { return s.scrub >= 0 && s.step < 1000; }));
   worker.update_snapshot();
@@ -121,9 +116,8 @@ TEST(SimulationModel, ScrubbingBackAndResumingRepeatsTheRun) {
   EXPECT_FALSE(worker.status().running);
 
   // resumed, then stepped to the instant of the first run
-  worker.send(SimCommand::make(SimCommand::Kind::kResume, "test"));
-  SimCommand to = SimCommand::make(SimCommand::Kind::kStepTo, "test");
-  to.number = first.time;
+  worker.send(SimCommand{command::Resume{}, "test"});
+  SimCommand to{command::StepTo{first.time}, "test"};
   worker.send(to);
   ASSERT_TRUE(wait([](const WorkerStatus& s) { return s.commands_applied >= 4 && !s.running && s.step == 1750; }));
   worker.update_snapshot();

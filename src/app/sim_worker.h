@@ -145,6 +145,10 @@ class SimWorker {
   void apply(SimCommand& command);
   template <typename Action>
   void handle(Action& action, const std::string& by);
+  // parts the handlers share: refusing to step after a failure, starting to run, settings taken
+  bool refused_after_failure(const char* verb, const std::string& by);
+  void start_running(const std::string& by);
+  void settings_accepted();
   void rebuild(const SceneDef& scene, bool keep_settings, const char* what);
   // What follows a new or reset model: paused at its start, errors cleared, the log told.
   void restarted(const std::string& scene_name, const char* what);

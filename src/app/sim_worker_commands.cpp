@@ -32,17 +32,31 @@ std::string describe_settings(const LiveSettings& s) {
 
 }  // namespace
 
-template <>
-void SimWorker::handle(command::Run&, const std::string& by) {
-  leave_scrub(("run" + by).c_str());
-  if (numerical_error_) {
-    log_.add("cannot run: the last step failed; reset, reload or change a setting first" + by);
-    return;
-  }
+bool SimWorker::refused_after_failure(const char* verb, const std::string& by) {
+  if (!numerical_error_) return false;
+  log_.add(std::string("cannot ") + verb + ": the last step failed; reset, reload or change a setting first" + by);
+  return true;
+}
+
+void SimWorker::start_running(const std::string& by) {
   running_ = true;
   pending_steps_ = 0;
   reanchor();
   log_.add("run, " + describe_speed(speed_) + by);
+}
+
+void SimWorker::settings_accepted() {
+  numerical_error_.reset();
+  numerical_message_.clear();
+  rejected_key_.clear();
+  rejected_message_.clear();
+}
+
+template <>
+void SimWorker::handle(command::Run&, const std::string& by) {
+  leave_scrub(("run" + by).c_str());
+  if (refused_after_failure("run", by)) return;
+  start_running(by);
 }
 
 template <>
@@ -65,10 +79,7 @@ void SimWorker::handle(command::ToggleRun&, const std::string& by) {
 
 template <>
 void SimWorker::handle(command::Step& step, const std::string& by) {
-  if (numerical_error_) {
-    log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
-    return;
-  }
+  if (refused_after_failure("step", by)) return;
   leave_scrub(("step" + by).c_str());
   running_ = false;
   const int steps = step.steps > 0 ? step.steps : 1;
@@ -78,10 +89,7 @@ void SimWorker::handle(command::Step& step, const std::string& by) {
 
 template <>
 void SimWorker::handle(command::StepTo& step_to, const std::string& by) {
-  if (numerical_error_) {
-    log_.add("cannot step: the last step failed; reset, reload or change a setting first" + by);
-    return;
-  }
+  if (refused_after_failure("step", by)) return;
   leave_scrub(("step to t" + by).c_str());
   running_ = false;
   // whole steps of dt from now, the last one at or after the time asked (a step of dt
@@ -121,10 +129,7 @@ template <>
 void SimWorker::handle(command::ApplySettings& apply, const std::string& by) {
   try {
     model_->apply(apply.settings);
-    numerical_error_.reset();
-    numerical_message_.clear();
-    rejected_key_.clear();
-    rejected_message_.clear();
+    settings_accepted();
     log_.add("settings: " + describe_settings(model_->settings()) + by);
   } catch (const std::exception& e) {
     note_rejection(e);
@@ -145,10 +150,7 @@ void SimWorker::handle(command::SetParameter& set, const std::string& by) {
   }
   try {
     model_->apply(s);
-    numerical_error_.reset();
-    numerical_message_.clear();
-    rejected_key_.clear();
-    rejected_message_.clear();
+    settings_accepted();
     log_.add(what + by);
   } catch (const std::exception& e) {
     note_rejection(e);
@@ -230,10 +232,7 @@ void SimWorker::handle(command::Resume&, const std::string& by) {
     return;
   }
   leave_scrub(("resume" + by).c_str());
-  running_ = true;
-  pending_steps_ = 0;
-  reanchor();
-  log_.add("run, " + describe_speed(speed_) + by);
+  start_running(by);
 }
 
 // the simulation thread's loop ends on Quit before applying it

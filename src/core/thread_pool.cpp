@@ -193,13 +193,13 @@ double Team::worker_cpu_seconds() {
 namespace detail {
 
 void run_on_team(int64_t count, void (*call)(void*, int64_t), void* context) {
+  if (count <= kMaxItemsPerRound) {
+    Team::instance().run(count, call, context);
+    return;
+  }
   // larger loops in rounds whose counts fit the claim word
   for (int64_t first = 0; first < count; first += kMaxItemsPerRound) {
     const int64_t round = std::min(count - first, kMaxItemsPerRound);
-    if (first == 0 && round == count) {
-      Team::instance().run(count, call, context);
-      continue;
-    }
     struct Offset {
       void (*call)(void*, int64_t);
       void* context;

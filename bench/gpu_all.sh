@@ -21,7 +21,7 @@ program() {
 }
 periflex=$(program periflex)
 bench=$(program gpu_pd_bench)
-tests=""
+tests=${GPU_ALL_TESTS:-}
 [[ -n "$build" && -x "$build/tests/test_gpu" ]] && tests="$build/tests/test_gpu"
 [[ -n "$periflex" && -n "$bench" ]] || { echo "periflex or gpu_pd_bench not found (build them, or run through the pack)"; exit 2; }
 work=$(mktemp -d)
@@ -40,7 +40,7 @@ trap 'rm -rf "$work"' EXIT
 
   if [[ -n "$tests" ]]; then
     echo "== GPU forces and breaks against the CPU (test_gpu)"
-    "$tests" --gtest_brief=1 2>&1 | tail -n 20
+    "$tests" --gtest_brief=1 ${GPU_ALL_TEST_FILTER:+--gtest_filter="$GPU_ALL_TEST_FILTER"} 2>&1 | tail -n 20
   fi
 
   echo "== the default notched plate to its end, each path (wall-clock seconds)"
@@ -52,6 +52,23 @@ trap 'rm -rf "$work"' EXIT
       echo "$device: $(echo "$end - $start" | bc) s; $(tail -n 1 "$work/$device.log")"
     else
       echo "$device: failed (exit $?): $(tail -n 3 "$work/$device.log")"
+    fi
+  done
+
+  # one field of summary.json (numbers and strings, as written one per line)
+  field() { sed -n "s/^ *\"$2\": \"\{0,1\}\([^\",]*\).*/\1/p" "$1" | head -n 1; }
+  echo "== the notched plate at 1M particles (dx = 62.5 um, dt = 25 ns), 100 steps, each path"
+  for device in cpu gpu; do
+    start=$(date +%s.%N)
+    if "$periflex" run scenes/notched_plate.toml --quiet --device "$device" --until 2.5e-6 \
+      --set flex_body.plate.grid_spacing=6.25e-5 --set solver.dt=2.5e-8 \
+      --out "$work/big_$device" >"$work/big_$device.log" 2>&1; then
+      end=$(date +%s.%N)
+      summary="$work/big_$device/summary.json"
+      echo "$device: $(echo "$end - $start" | bc) s in all; solver $(field "$summary" solver_time) s," \
+        "$(field "$summary" steps_per_second) steps/s; particles $(field "$summary" particles)"
+    else
+      echo "$device: failed (exit $?): $(tail -n 3 "$work/big_$device.log")"
     fi
   done
 } 2>&1 | tee "$out"

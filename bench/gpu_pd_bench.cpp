@@ -5,7 +5,8 @@
 // shipped. Positions are displaced by a small random field, far below s0, so every repetition does
 // the same work. The GPU figure is the whole evaluation as it runs today: positions up, the
 // dispatch, forces and break flags back. Counters: bond_evals_per_s (each stored direction once).
-// Wall-clock time throughout (the GPU works while the calling thread waits).
+// Wall-clock time throughout (the GPU works while the calling thread waits). BM_GpuResidentPass:
+// the pass alone, the positions already on the GPU.
 // Arguments: the plate side, then the CPU threads (0: all cores; ignored on the GPU).
 #include <benchmark/benchmark.h>
 #include <omp.h>
@@ -27,6 +28,7 @@ namespace {
 struct Body {
   std::unique_ptr<PdBody> body;
   Eigen::VectorXd q, qd, g;
+  GlBondForceDevice* device = nullptr;  // when on the GPU
   explicit Body(const FlexBodyDef& def) {
     body = PdBody::build(def, 0);
     q = Eigen::Map<const Eigen::VectorXd>(body->reference_positions().data(), 2 * body->particle_count());
@@ -85,7 +87,9 @@ Body& body(int side, bool gpu) {
     fresh = std::make_unique<Body>(side > 0 ? glass_square(side) : shipped_glass());
     if (gpu) {
       std::string why;
-      fresh->body->use_bond_force_device(std::make_unique<GlBondForceDevice>(compute_context(why)));
+      auto device = std::make_unique<GlBondForceDevice>(compute_context(why));
+      fresh->device = device.get();
+      fresh->body->use_bond_force_device(std::move(device));
     }
     return *fresh;
   }
@@ -124,6 +128,20 @@ void BM_GpuForcePass(benchmark::State& state) {
   report(state, b, b.body->bond_force_device()->description());
 }
 
+// The pass alone, with the state already on the GPU (nothing crosses the bus): what a step costs
+// the GPU once positions and velocities stay there.
+void BM_GpuResidentPass(benchmark::State& state) {
+  std::string why;
+  if (!compute_context(why)) {
+    state.SkipWithError(("no OpenGL compute context: " + why).c_str());
+    return;
+  }
+  Body& b = body(static_cast<int>(state.range(0)), true);
+  b.body->add_forces(b.q, b.qd, 0.0, b.g);  // positions up, the pass's settings
+  for (auto _ : state) b.device->repeat_last_pass();
+  report(state, b, b.body->bond_force_device()->description());
+}
+
 // sides: 128 (16k particles), 512 (262k), 1024 (1M), 2048 (4.2M); 0: the shipped glass (36k)
 constexpr int kSides[] = {0, 128, 512, 1024, 2048};
 void cpu_sizes(benchmark::internal::Benchmark* b) {
@@ -137,6 +155,7 @@ void gpu_sizes(benchmark::internal::Benchmark* b) {
 }
 BENCHMARK(BM_CpuForcePass)->Apply(cpu_sizes)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_GpuForcePass)->Apply(gpu_sizes)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_GpuResidentPass)->Apply(gpu_sizes)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace periflex

@@ -30,7 +30,8 @@ uint byte_at(uint word, uint index) { return (word >> (8u * (index & 3u))) & 255
 bool fixed_particle(int p) { return u_has_no_fail == 1 && byte_at(no_fail[uint(p) >> 2], uint(p)) != 0u; }
 
 void main() {
-  const int i = int(gl_GlobalInvocationID.x);
+  // rows beyond 65535 groups of 64 (4.2M particles) continue on the grid's second axis
+  const int i = int(gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x);
   if (i >= u_count) return;
   const double xi = pos[2 * i], yi = pos[2 * i + 1];
   const double vxi = u_damped == 1 ? vel[2 * i] : 0.0LF, vyi = u_damped == 1 ? vel[2 * i + 1] : 0.0LF;

@@ -1,5 +1,6 @@
 #include "gpu/gl_bond_force_device.h"
 
+#include <algorithm>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -11,6 +12,7 @@ namespace periflex {
 namespace {
 
 constexpr int kGroupSize = 64;  // local_size_x of pd_bond_forces.comp
+constexpr unsigned kMaxGroupsAcross = 65535;  // GL_MAX_COMPUTE_WORK_GROUP_COUNT's floor in the spec
 
 // Bytes packed four to a 32-bit word, as the shader reads them (byte_at).
 std::vector<uint32_t> pack_bytes(const uint8_t* bytes, size_t count) {
@@ -40,7 +42,8 @@ void read_back(GLuint buffer, size_t offset, size_t bytes, void* out) {
 
 }  // namespace
 
-GlBondForceDevice::GlBondForceDevice(std::shared_ptr<GlComputeContext> context) : context_(std::move(context)) {
+GlBondForceDevice::GlBondForceDevice(std::shared_ptr<GlComputeContext> context, unsigned groups_across)
+    : context_(std::move(context)), groups_across_(std::clamp(groups_across, 1u, kMaxGroupsAcross)) {
   EglContext::Scope current(context_->egl());
   glGenBuffers(kBufferCount, buffers_);
 }
@@ -99,18 +102,8 @@ void GlBondForceDevice::add_forces(BondStore& bonds, const DeviceEvaluation& e) 
     glClearBufferData(GL_SHADER_STORAGE_BUFFER, GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &zero);
   }
 
-  const GLuint program = context_->bond_force_program();
-  glUseProgram(program);
-  for (int b = 0; b < kBufferCount; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
-  glUniform1i(glGetUniformLocation(program, "u_count"), n);
-  glUniform1i(glGetUniformLocation(program, "u_damped"), damped ? 1 : 0);
-  glUniform1d(glGetUniformLocation(program, "u_eta_over_e"), damped ? e.eta_over_e : 0.0);
-  glUniform1i(glGetUniformLocation(program, "u_breaking"), e.breaking ? 1 : 0);
-  glUniform1d(glGetUniformLocation(program, "u_s0"), e.s0);
-  glUniform1i(glGetUniformLocation(program, "u_track"), e.row_max ? 1 : 0);
-  glUniform1i(glGetUniformLocation(program, "u_has_no_fail"), has_no_fail_ ? 1 : 0);
-  glDispatchCompute(static_cast<GLuint>((n + kGroupSize - 1) / kGroupSize), 1, 1);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+  last_ = Pass{damped, e.breaking, e.row_max != nullptr, damped ? e.eta_over_e : 0.0, e.s0};
+  dispatch(last_);
 
   // the row sums, added as the CPU loop adds its own
   row_sums_.resize(2 * static_cast<size_t>(n));
@@ -133,6 +126,33 @@ void GlBondForceDevice::add_forces(BondStore& bonds, const DeviceEvaluation& e) 
         if (row_stiffness_[b] == 0.0f && bonds.stiffness[begin + b] > 0.0f) bonds.broken[begin + b] = 2;
     }
   }
+  check_gl("the GPU bond-force pass");
+}
+
+void GlBondForceDevice::dispatch(const Pass& pass) {
+  const GLuint program = context_->bond_force_program();
+  glUseProgram(program);
+  for (int b = 0; b < kBufferCount; ++b) glBindBufferBase(GL_SHADER_STORAGE_BUFFER, b, buffers_[b]);
+  glUniform1i(glGetUniformLocation(program, "u_count"), particles_);
+  glUniform1i(glGetUniformLocation(program, "u_damped"), pass.damped ? 1 : 0);
+  glUniform1d(glGetUniformLocation(program, "u_eta_over_e"), pass.eta_over_e);
+  glUniform1i(glGetUniformLocation(program, "u_breaking"), pass.breaking ? 1 : 0);
+  glUniform1d(glGetUniformLocation(program, "u_s0"), pass.s0);
+  glUniform1i(glGetUniformLocation(program, "u_track"), pass.track ? 1 : 0);
+  glUniform1i(glGetUniformLocation(program, "u_has_no_fail"), has_no_fail_ ? 1 : 0);
+  // a dispatch has at most 65535 groups along an axis (the least every driver gives): larger
+  // bodies take rows of groups on the second axis, the shader's row index spanning both
+  const GLuint groups = static_cast<GLuint>((particles_ + kGroupSize - 1) / kGroupSize);
+  const GLuint across = std::min<GLuint>(groups, groups_across_);
+  glDispatchCompute(across, (groups + across - 1) / across, 1);
+  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+void GlBondForceDevice::repeat_last_pass() {
+  if (particles_ == 0) return;
+  EglContext::Scope current(context_->egl());
+  dispatch(last_);
+  glFinish();
   check_gl("the GPU bond-force pass");
 }
 

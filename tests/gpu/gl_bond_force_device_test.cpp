@@ -77,9 +77,10 @@ void displaced_state(const PdBody& body, double strain, double rate, Eigen::Vect
 struct BodyPair {
   std::unique_ptr<PdBody> cpu, gpu;
 };
-BodyPair build_pair(const FlexBodyDef& def, const std::shared_ptr<GlComputeContext>& context) {
+BodyPair build_pair(const FlexBodyDef& def, const std::shared_ptr<GlComputeContext>& context,
+                    unsigned groups_across = 65535) {
   BodyPair pair{PdBody::build(def, 0), PdBody::build(def, 0)};
-  pair.gpu->use_bond_force_device(std::make_unique<GlBondForceDevice>(context));
+  pair.gpu->use_bond_force_device(std::make_unique<GlBondForceDevice>(context, groups_across));
   return pair;
 }
 
@@ -136,6 +137,18 @@ TEST(GlBondForceDevice, ForcesEqualTheCpuLoopsOnEveryShippedBondBasedBody) {
   // the shipped scenes hold a dozen such bodies, most of them breakable
   EXPECT_GE(bodies, 10);
   EXPECT_GE(breaking, 5);
+}
+
+// A body of more rows than one axis of a dispatch holds (beyond 4.2M particles: 65535 groups of
+// 64) continues on the second axis. The notched plate's 4,000 rows laid 7 groups across, so that
+// the last row of groups is partly empty: every row's force as the CPU's.
+TEST(GlBondForceDevice, RowsBeyondOneAxisOfGroupsContinueOnTheNext) {
+  REQUIRE_COMPUTE_CONTEXT(context);
+  const SceneDef scene = load_scene(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/notched_plate.toml");
+  BodyPair pair = build_pair(scene.flex_bodies.at(0), context, 7);
+  Eigen::VectorXd q, qd;
+  displaced_state(*pair.cpu, 1.5 * pair.cpu->critical_stretch(), 10.0, q, qd);
+  expect_same_forces(pair, q, qd, "notched plate, 7 groups across");
 }
 
 // Bonds that break after the step (the timing of integrators with trial stages): the GPU's row

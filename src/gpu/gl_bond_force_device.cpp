@@ -49,8 +49,9 @@ GlBondForceDevice::GlBondForceDevice(std::shared_ptr<GlComputeContext> context, 
 }
 
 GlBondForceDevice::~GlBondForceDevice() {
-  EglContext::Scope current(context_->egl());
-  glDeleteBuffers(kBufferCount, buffers_);
+  // at the process's exit a driver may have torn its EGL down first: then there is nothing to free
+  EglContext::Scope current(context_->egl(), std::nothrow);
+  if (current.current()) glDeleteBuffers(kBufferCount, buffers_);
 }
 
 void GlBondForceDevice::upload(const BondStore& bonds, const uint8_t* no_fail) {

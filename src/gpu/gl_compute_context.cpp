@@ -31,8 +31,9 @@ GlComputeContext::GlComputeContext(const std::string& resource_root) : egl_(make
 }
 
 GlComputeContext::~GlComputeContext() {
-  EglContext::Scope current(egl_);
-  glDeleteProgram(bond_force_program_);
+  // at the process's exit a driver may have torn its EGL down first: then there is nothing to free
+  EglContext::Scope current(egl_, std::nothrow);
+  if (current.current()) glDeleteProgram(bond_force_program_);
 }
 
 }  // namespace periflex

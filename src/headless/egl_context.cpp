@@ -182,6 +182,17 @@ EglContext::Scope::Scope(EglContext& context) {
   switched_ = true;
 }
 
+EglContext::Scope::Scope(EglContext& context, std::nothrow_t) {
+  const EGLContext mine = static_cast<EGLContext>(context.context_);
+  context_ = eglGetCurrentContext();
+  if (context_ == mine) return;
+  display_ = eglGetCurrentDisplay();
+  draw_ = eglGetCurrentSurface(EGL_DRAW);
+  read_ = eglGetCurrentSurface(EGL_READ);
+  switched_ = eglMakeCurrent(static_cast<EGLDisplay>(context.display_), EGL_NO_SURFACE, EGL_NO_SURFACE, mine);
+  current_ = switched_;
+}
+
 EglContext::Scope::~Scope() {
   if (!switched_) return;
   // the thread's own context back, or none (so that another thread may take this one next)

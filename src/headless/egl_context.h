@@ -4,6 +4,7 @@
 // display. The context has no surface: draw into a framebuffer object (see OffscreenTarget).
 #pragma once
 
+#include <new>
 #include <string>
 
 namespace periflex {
@@ -27,7 +28,11 @@ class EglContext {
   class Scope {
    public:
     explicit Scope(EglContext& context);
+    // For destructors: where the context cannot be made current (the driver already torn down
+    // at the process's exit, a lost context), nothing is thrown and current() is false.
+    Scope(EglContext& context, std::nothrow_t);
     ~Scope();
+    bool current() const { return current_; }
     Scope(const Scope&) = delete;
     Scope& operator=(const Scope&) = delete;
 
@@ -37,6 +42,7 @@ class EglContext {
     void* read_ = nullptr;
     void* context_ = nullptr;
     bool switched_ = false;
+    bool current_ = true;
   };
 
   // "platform: surfaceless; GL: 4.5 (Core Profile) Mesa ...; renderer: llvmpipe ..."

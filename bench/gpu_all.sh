@@ -61,17 +61,20 @@ trap 'rm -rf "$work"' EXIT
   # one field of summary.json (numbers and strings, as written one per line)
   field() { sed -n "s/^ *\"$2\": \"\{0,1\}\([^\",]*\).*/\1/p" "$1" | head -n 1; }
   echo "== the notched plate at 1M particles (dx = 62.5 um, dt = 25 ns), 100 steps, each path"
-  for device in cpu gpu; do
+  for path in cpu gpu:fp64 gpu:fp32; do
+    device=${path%%:*}; precision=${path#*:}; [[ "$precision" == "$path" ]] && precision=fp64
+    name="big_${device}_$precision"
     start=$(date +%s.%N)
     if "$periflex" run scenes/notched_plate.toml --quiet --device "$device" --until 2.5e-6 \
-      --set flex_body.plate.grid_spacing=6.25e-5 --set solver.dt=2.5e-8 \
-      --out "$work/big_$device" >"$work/big_$device.log" 2>&1; then
+      --set flex_body.plate.grid_spacing=6.25e-5 --set solver.dt=2.5e-8 --set solver.precision="$precision" \
+      --out "$work/$name" >"$work/$name.log" 2>&1; then
       end=$(date +%s.%N)
-      summary="$work/big_$device/summary.json"
-      echo "$device: $(echo "$end - $start" | bc) s in all; solver $(field "$summary" solver_time) s," \
+      summary="$work/$name/summary.json"
+      echo "$path: $(echo "$end - $start" | bc) s in all; solver $(field "$summary" solver_time) s," \
         "$(field "$summary" steps_per_second) steps/s; particles $(field "$summary" particles)"
+      tail -n 1 "$work/$name/series.csv" | cut -c1-160
     else
-      echo "$device: failed (exit $?): $(tail -n 3 "$work/big_$device.log")"
+      echo "$path: failed (exit $?): $(tail -n 3 "$work/$name.log")"
     fi
   done
 } 2>&1 | tee "$out"

@@ -19,22 +19,24 @@ GpuBackendInstallation::GpuBackendInstallation() {
 GpuBackendInstallation::~GpuBackendInstallation() { install_bond_force_device({}); }
 
 std::string apply_device_option(const std::string& device, SceneDef& scene) {
-  scene.solver.device = device;
-  if (device != "gpu") return "";
+  if (!device.empty()) scene.solver.device = device;
+  if (scene.solver.device != "gpu") return "";
+  // an error names what chose the GPU: the flag, or the scene's key
+  const SourceLocation where = !device.empty() ? flag_location("--device") : scene.locate("solver.device");
+  const std::string leave_out = !device.empty() ? "leave out --device gpu" : "set solver.device = \"cpu\"";
   // the laws first: they need no context to be refused
   for (const FlexBodyDef& def : scene.flex_bodies) {
     if (def.material.model == PdMaterialDef::Model::kBondBased) continue;
-    throw InputError(flag_location("--device"),
-                     "flexible body '" + def.name +
-                         "' has a law that runs only on the CPU; only material.model = \"bond_based\" runs on the "
-                         "GPU (leave out --device gpu)");
+    throw InputError(where, "flexible body '" + def.name +
+                                "' has a law that runs only on the CPU; only material.model = \"bond_based\" runs on the "
+                                "GPU (" + leave_out + ")");
   }
-  // then the context: made here, before the model, and kept for the bodies' devices
+  // then the context and the precision's program: made here, before the model, and kept for the
+  // bodies' devices
   try {
-    return make_bond_force_device()->description();
+    return make_bond_force_device(device_precision(scene.solver.precision))->description();
   } catch (const std::exception& e) {
-    throw InputError(flag_location("--device"),
-                     std::string("no GPU compute here: ") + e.what() + " (leave out --device gpu to run on the CPU)");
+    throw InputError(where, std::string("no GPU compute here: ") + e.what() + " (" + leave_out + " to run on the CPU)");
   }
 }
 

@@ -1,5 +1,5 @@
-// --device: where the flexible bodies' bond forces run ("cpu", the default, or "gpu": OpenGL
-// compute, docs/gpu.md). Checked before the model is built: a scene whose laws the GPU cannot run,
+// --device and solver.device: where the flexible bodies' bond forces run ("cpu", the default, or
+// "gpu": OpenGL compute in solver.precision, docs/gpu.md). Checked before the model is built: a scene whose laws the GPU cannot run,
 // or a machine without an OpenGL 4.3 compute context with fp64, is refused naming what is missing.
 #pragma once
 
@@ -20,8 +20,8 @@ class GpuBackendInstallation {
   GpuBackendInstallation& operator=(const GpuBackendInstallation&) = delete;
 };
 
-// Sets scene.solver.device from the flag's value; throws InputError naming --device when "gpu"
-// cannot run this scene here. Returns the device's description ("OpenGL compute fp64; GL: ...;
+// Sets scene.solver.device from the flag (empty: as the scene says); throws InputError naming
+// --device or solver.device when "gpu" cannot run this scene here. Returns the device's description ("OpenGL compute fp64; GL: ...;
 // renderer: ..."), empty for the CPU.
 std::string apply_device_option(const std::string& device, SceneDef& scene);
 

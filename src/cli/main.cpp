@@ -154,7 +154,8 @@ int run_main(int argc, char** argv) {
   run_cmd->add_option("--out", run.out_dir, "Output directory (default out/<scene-name>)");
   run_cmd->add_option("--threads", run.threads, "Threads for the force evaluation (default: all cores)")
       ->check(CLI::Range(0, 1024));
-  run_cmd->add_option("--device", run.device, "Where the flexible bodies' bond forces run: cpu (default) or gpu")
+  run_cmd->add_option("--device", run.device,
+                      "Where the flexible bodies' bond forces run: cpu or gpu (overrides solver.device, default cpu)")
       ->check(CLI::IsMember({"cpu", "gpu"}));
   run_cmd->add_flag("--quiet", run.quiet, "No progress bar; only the final line");
   run_cmd->add_option("--vtk-every", run.vtk_every, "Write VTK snapshots (particles and rigid bodies, for ParaView) every N steps")

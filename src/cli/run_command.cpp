@@ -179,6 +179,7 @@ RunOutcome run_and_report(const RunOptions& requested) {
   summary.overrides = options.overrides;
   summary.integrator = scene.solver.integrator;
   summary.device = scene.solver.device;
+  summary.precision = scene.solver.device == "gpu" ? scene.solver.precision : "fp64";
   summary.device_description = options.device_description;
   summary.dt = scene.solver.dt;
   write_summary(summary_path, info, summary);

@@ -20,12 +20,8 @@ EglContext make_compute_context() {
 
 }  // namespace
 
-GlComputeContext::GlComputeContext(const std::string& resource_root) : egl_(make_compute_context()) {
-  EglContext::Scope current(egl_);
-  const auto path = std::filesystem::path(resource_root) / "shaders" / "pd_bond_forces.comp";
-  // a shader that does not compile here most often meets a driver without fp64 in its GLSL
-  bond_force_program_ = load_compute_program(path.string(), "\n(does the driver have fp64?)");
-  description_ = "OpenGL compute fp64; " + egl_.description();
+GlComputeContext::GlComputeContext(const std::string& resource_root)
+    : egl_(make_compute_context()), resource_root_(resource_root), description_(egl_.description()) {
   // current on no thread between passes: each pass takes it on the thread it runs on
   egl_.release();
 }
@@ -33,7 +29,21 @@ GlComputeContext::GlComputeContext(const std::string& resource_root) : egl_(make
 GlComputeContext::~GlComputeContext() {
   // at the process's exit a driver may have torn its EGL down first: then there is nothing to free
   EglContext::Scope current(egl_, std::nothrow);
-  if (current.current()) glDeleteProgram(bond_force_program_);
+  if (!current.current()) return;
+  for (unsigned program : programs_)
+    if (program) glDeleteProgram(program);
+}
+
+unsigned GlComputeContext::bond_force_program(DevicePrecision precision) {
+  unsigned& program = programs_[precision == DevicePrecision::kFp32 ? 1 : 0];
+  if (program) return program;
+  EglContext::Scope current(egl_);
+  const auto path = std::filesystem::path(resource_root_) / "shaders" / "pd_bond_forces.comp";
+  if (precision == DevicePrecision::kFp32)
+    program = load_compute_program(path.string(), "", "#define PD_FP32 1\n");
+  else  // a shader that does not compile here most often meets a driver without fp64 in its GLSL
+    program = load_compute_program(path.string(), "\n(does the driver have fp64? solver.precision = \"fp32\" needs none)");
+  return program;
 }
 
 }  // namespace periflex

@@ -24,6 +24,7 @@ void write_summary(const std::string& path, const ModelInfo& info, const RunSumm
   j["set"] = run.overrides;
   j["integrator"] = run.integrator;
   j["device"] = run.device;
+  j["precision"] = run.precision;
   j["device_description"] = run.device_description.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.device_description);
   j["dt"] = finite_or_null(run.dt);
   j["steps"] = run.steps;

@@ -15,7 +15,8 @@ struct RunSummary {
   std::string scene_path;
   std::vector<std::string> overrides;  // --set values in order (what replaying the run's VTK series loads)
   std::string integrator;
-  std::string device = "cpu";     // where the bond forces ran: cpu | gpu (--device)
+  std::string device = "cpu";     // where the bond forces ran: cpu | gpu (--device, solver.device)
+  std::string precision = "fp64"; // their arithmetic: fp64 | fp32 (solver.precision, GPU only)
   std::string device_description; // the GPU's driver and renderer; empty on the CPU
   double dt = 0.0;
   long steps = 0;                 // step count at the end (counted from t = 0)

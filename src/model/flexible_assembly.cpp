@@ -10,9 +10,9 @@ namespace {
 
 // A body's bonds on the GPU: refused (InputError at the body) when its law cannot run there or no
 // device can be made here, naming what is missing.
-void attach_bond_force_device(const FlexBodyDef& def, PdBody& flex) {
+void attach_bond_force_device(const FlexBodyDef& def, DevicePrecision precision, PdBody& flex) {
   try {
-    flex.use_bond_force_device(make_bond_force_device());
+    flex.use_bond_force_device(make_bond_force_device(precision));
   } catch (const std::exception& e) {
     throw InputError(def.where, std::string("solver.device = \"gpu\": ") + e.what() +
                                     "; run it on the CPU (--device cpu)");
@@ -31,7 +31,8 @@ void build_flexible_part(const SceneDef& scene, SystemModel& m) {
     const int offset = static_cast<int>(m.q0.size());
     auto flex = PdBody::build(def, offset);
     // the bond forces on the device the solver names (pd/bond_force_device.h)
-    if (scene.solver.device == "gpu") attach_bond_force_device(def, *flex);
+    if (scene.solver.device == "gpu")
+      attach_bond_force_device(def, device_precision(scene.solver.precision), *flex);
     const int n = 2 * flex->particle_count();
     const auto& reference = flex->reference_positions();
     const auto velocities = flex->initial_velocities();

@@ -30,14 +30,22 @@ bool bond_force_device_installed() {
   return static_cast<bool>(installed_factory());
 }
 
-std::unique_ptr<BondForceDevice> make_bond_force_device() {
+const char* precision_name(DevicePrecision precision) {
+  return precision == DevicePrecision::kFp32 ? "fp32" : "fp64";
+}
+
+DevicePrecision device_precision(const std::string& name) {
+  return name == "fp32" ? DevicePrecision::kFp32 : DevicePrecision::kFp64;
+}
+
+std::unique_ptr<BondForceDevice> make_bond_force_device(DevicePrecision precision) {
   BondForceDeviceFactory factory;
   {
     std::lock_guard<std::mutex> lock(factory_mutex());
     factory = installed_factory();
   }
   if (!factory) throw std::runtime_error("this program was built without a GPU backend (no OpenGL compute)");
-  return factory();
+  return factory(precision);
 }
 
 }  // namespace periflex

@@ -21,6 +21,16 @@
 
 namespace periflex {
 
+// The arithmetic a device evaluates in. fp64: the CPU's formulas, the same breaks to the bit where
+// the device's square root and division are correctly rounded. fp32: the displacement form
+// (single-precision displacements from the reference and reference bond vectors, the stretch
+// from their difference, so that no large coordinate cancels), half the memory traffic and a
+// stretch within about 1e-7 of fp64's, so bonds at the edge of s0 may break a step apart.
+enum class DevicePrecision { kFp64, kFp32 };
+// "fp64" / "fp32", as solver.precision spells them, and back (anything else: fp64).
+const char* precision_name(DevicePrecision precision);
+DevicePrecision device_precision(const std::string& name);
+
 // One evaluation on a device. Positions and velocities are interleaved [x0 y0 x1 y1 ...].
 struct DeviceEvaluation {
   const double* pos = nullptr;
@@ -41,9 +51,9 @@ class BondForceDevice {
   virtual ~BondForceDevice() = default;
   // What runs the evaluations, e.g. "OpenGL 4.5 compute fp64; renderer: llvmpipe (LLVM 15.0.7, 256 bits)".
   virtual const std::string& description() const = 0;
-  // Takes the body's bonds (topology, stiffness, broken flags) and no-fail flags (null: none), once;
-  // the device keeps them for every later evaluation.
-  virtual void upload(const BondStore& bonds, const uint8_t* no_fail) = 0;
+  // Takes the body's bonds (topology, stiffness, broken flags), no-fail flags (null: none) and
+  // reference positions (interleaved, 2 n), once; the device keeps them for every later evaluation.
+  virtual void upload(const BondStore& bonds, const uint8_t* no_fail, const double* reference) = 0;
   // The host changed stiffness or broken flags outside an evaluation (a break pass after the step,
   // the knife, a restored state): the device takes them again before its next evaluation.
   virtual void bonds_changed() = 0;
@@ -53,14 +63,14 @@ class BondForceDevice {
 };
 
 // Makes a device for one body; throws std::runtime_error saying what is missing when it cannot.
-using BondForceDeviceFactory = std::function<std::unique_ptr<BondForceDevice>()>;
+using BondForceDeviceFactory = std::function<std::unique_ptr<BondForceDevice>(DevicePrecision)>;
 
 // Installs the factory make_bond_force_device calls (the program does at its start; empty: none).
 void install_bond_force_device(BondForceDeviceFactory factory);
 // True when a factory is installed.
 bool bond_force_device_installed();
-// A new device from the installed factory; throws std::runtime_error when none is installed or
+// A new device of the given precision from the installed factory; throws std::runtime_error when none is installed or
 // the factory cannot make one.
-std::unique_ptr<BondForceDevice> make_bond_force_device();
+std::unique_ptr<BondForceDevice> make_bond_force_device(DevicePrecision precision = DevicePrecision::kFp64);
 
 }  // namespace periflex

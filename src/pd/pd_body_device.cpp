@@ -15,7 +15,7 @@ void PdBody::use_bond_force_device(std::unique_ptr<BondForceDevice> device) {
   if (m.def.material.model != PdMaterialDef::Model::kBondBased)
     throw std::invalid_argument("flexible body '" + m.def.name +
                                 "': only the bond-based law (material.model = \"bond_based\") runs on the GPU");
-  if (device) device->upload(m.bonds, m.no_fail_flags());
+  if (device) device->upload(m.bonds, m.no_fail_flags(), m.reference.data());
   m.device = std::move(device);
   m.stretch_cache_valid = false;
 }

@@ -17,9 +17,14 @@ std::string read_text(const std::string& path) {
   return ss.str();
 }
 
-// `hint` follows the driver's log when the shader does not compile.
-GLuint compile(GLenum type, const std::string& path, const std::string& hint = "") {
-  const std::string source = read_text(path);
+// `hint` follows the driver's log when the shader does not compile; `defines` (lines of #define)
+// go after the source's first line, its #version.
+GLuint compile(GLenum type, const std::string& path, const std::string& hint = "", const std::string& defines = "") {
+  std::string source = read_text(path);
+  if (!defines.empty()) {
+    const size_t line_end = source.find('\n');
+    source.insert(line_end == std::string::npos ? source.size() : line_end + 1, defines);
+  }
   const char* text = source.c_str();
   GLuint shader = glCreateShader(type);
   glShaderSource(shader, 1, &text, nullptr);
@@ -66,8 +71,8 @@ GLuint load_program(const std::string& vertex_path, const std::string& fragment_
   return link({vs, fs}, "shaders " + vertex_path + " + " + fragment_path);
 }
 
-GLuint load_compute_program(const std::string& path, const std::string& compile_hint) {
-  return link({compile(GL_COMPUTE_SHADER, path, compile_hint)}, "compute shader " + path);
+GLuint load_compute_program(const std::string& path, const std::string& compile_hint, const std::string& defines) {
+  return link({compile(GL_COMPUTE_SHADER, path, compile_hint, defines)}, "compute shader " + path);
 }
 
 void check_gl(const char* where) {

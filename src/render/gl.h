@@ -15,8 +15,10 @@ namespace periflex {
 // the driver's log on failure.
 GLuint load_program(const std::string& vertex_path, const std::string& fragment_path);
 // The same for one compute shader file (OpenGL 4.3); `compile_hint` is added to the message when
-// the shader does not compile (what the caller knows of the likely cause).
-GLuint load_compute_program(const std::string& path, const std::string& compile_hint = "");
+// the shader does not compile (what the caller knows of the likely cause); `defines` (lines of
+// #define) are placed after its #version line.
+GLuint load_compute_program(const std::string& path, const std::string& compile_hint = "",
+                            const std::string& defines = "");
 
 // Throws std::runtime_error naming `where` when glGetError reports an error.
 void check_gl(const char* where);

@@ -241,8 +241,10 @@ struct SolverDef {
   bool allow_unstable = false;
   int threads = 0;                 // 0: all cores
   double hht_alpha = -0.1;         // "hht": numerical damping alpha in [-1/3, 0] (0: trapezoidal rule)
-  // where the flexible bodies' bond forces run: "cpu", or "gpu" (set by --device; docs/gpu.md)
+  // where the flexible bodies' bond forces run: "cpu", or "gpu" (--device overrides; docs/gpu.md)
   std::string device = "cpu";
+  // the GPU's arithmetic: "fp64", or "fp32" in the displacement form (the CPU runs fp64 always)
+  std::string precision = "fp64";
 };
 
 // ---------------------------------------------------------------------------

@@ -32,7 +32,8 @@ void SceneTableReader::read_solver() {
   TableReader in(context_, *table, "solver", "[solver]");
   SolverDef& solver = scene_.solver;
   // values that later checks relate to each other (and to command-line flags) remember where they came from
-  for (const char* key : {"integrator", "dt", "end_time", "output_interval", "threads"}) note_origin(in, key);
+  for (const char* key : {"integrator", "dt", "end_time", "output_interval", "threads", "device", "precision"})
+    note_origin(in, key);
   solver.integrator = in.choice("integrator", scene_integrator_names(), solver.integrator);
   solver.dt = in.number("dt", solver.dt, Sign::kPositive, true);
   solver.end_time = in.number("end_time", solver.end_time, Sign::kPositive, true);
@@ -51,6 +52,8 @@ void SceneTableReader::read_solver() {
     in.fail("allow_unstable", "cannot be true with auto_substep = true (sub-steps keep every step stable); "
                               "set one of them");
   solver.threads = static_cast<int>(in.integer("threads", solver.threads, 0));
+  solver.device = in.choice("device", {"cpu", "gpu"}, solver.device);
+  solver.precision = in.choice("precision", {"fp64", "fp32"}, solver.precision);
   // HHT-alpha is unconditionally stable only for alpha in [-1/3, 0]
   solver.hht_alpha = in.number("hht_alpha", solver.hht_alpha);
   if (solver.hht_alpha < -1.0 / 3.0 || solver.hht_alpha > 0.0)

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "../cli/run_program.h"
+#include "gpu_program_support.h"
 #include "core/resources.h"
 #include "gpu/gl_compute_context.h"
 
@@ -21,49 +21,6 @@ namespace periflex::testing {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Why no compute context can be made here (empty: one can).
-const std::string& compute_unavailable() {
-  static const std::string why = [] {
-    try {
-      GlComputeContext probe(find_resource_root());
-      return std::string();
-    } catch (const std::exception& e) {
-      return std::string(e.what());
-    }
-  }();
-  return why;
-}
-
-#define REQUIRE_PROGRAM_COMPUTE_CONTEXT() \
-  if (!compute_unavailable().empty()) GTEST_SKIP() << "no OpenGL compute context here: " << compute_unavailable()
-
-// series.csv as rows of numbers under its header.
-struct Series {
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> rows;
-};
-Series read_series(const fs::path& path) {
-  Series s;
-  std::istringstream text(read_text(path));
-  std::string line;
-  std::getline(text, line);
-  std::istringstream header(line);
-  for (std::string cell; std::getline(header, cell, ',');) s.columns.push_back(cell);
-  while (std::getline(text, line)) {
-    std::istringstream row(line);
-    std::vector<double> values;
-    for (std::string cell; std::getline(row, cell, ',');) values.push_back(std::stod(cell));
-    s.rows.push_back(values);
-  }
-  return s;
-}
-
-int column(const Series& s, const std::string& name) {
-  for (size_t c = 0; c < s.columns.size(); ++c)
-    if (s.columns[c] == name) return static_cast<int>(c);
-  return -1;
-}
 
 // The notched plate with its crack started early (fracture energy a hundredth) to 1.2e-4 s, 300
 // steps, by the program as typed on each path: the same rows, the same broken bonds in every row,
@@ -87,7 +44,7 @@ TEST(DeviceOption, NotchedPlateOnTheGpuWritesTheCpuRows) {
   ASSERT_EQ(a.columns, b.columns);
   ASSERT_EQ(a.rows.size(), b.rows.size());
   ASSERT_GT(a.rows.size(), 5u);
-  const int broken = column(a, "broken_bonds");
+  const int broken = a.column("broken_bonds");
   ASSERT_GE(broken, 0);
   EXPECT_GT(a.rows.back()[broken], 20.0) << "the crack did not start within the run";
   for (size_t c = 0; c < a.columns.size(); ++c) {

@@ -23,7 +23,7 @@ struct CountingDevice : BondForceDevice {
   std::string name = "CPU loops behind the seam";
 
   const std::string& description() const override { return name; }
-  void upload(const BondStore&, const uint8_t* flags) override {
+  void upload(const BondStore&, const uint8_t* flags, const double*) override {
     ++uploads;
     no_fail = flags;
   }
@@ -138,7 +138,7 @@ TEST(PdBodyDevice, OnlyTheBondBasedLawRunsOnADevice) {
 TEST(PdBodyDevice, NoDeviceIsInstalledByDefault) {
   EXPECT_FALSE(bond_force_device_installed());
   EXPECT_THROW(make_bond_force_device(), std::runtime_error);
-  install_bond_force_device([] { return std::make_unique<CountingDevice>(); });
+  install_bond_force_device([](DevicePrecision) { return std::make_unique<CountingDevice>(); });
   EXPECT_TRUE(bond_force_device_installed());
   EXPECT_NE(make_bond_force_device(), nullptr);
   install_bond_force_device({});

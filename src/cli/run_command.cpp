@@ -24,6 +24,7 @@
 #include "core/error.h"
 #include "core/sim_time.h"
 #include "output/atomic_file.h"
+#include "pd/bond_force_device.h"
 #include "output/checkpoint_file.h"
 #include "output/point_file_writer.h"
 #include "output/run_record.h"
@@ -336,6 +337,9 @@ RunOutcome run_and_report(const RunOptions& requested) {
   } catch (const InputError& error) {
     failure = std::current_exception();
     fail("bad_input", kExitBadInput, std::string("error: ") + error.what());
+  } catch (const DeviceError& error) {
+    failure = std::current_exception();
+    fail("device_failure", kExitNumerical, std::string("GPU failure: ") + error.what());
   } catch (const std::exception& error) {
     failure = std::current_exception();
     fail("error", kExitOther, std::string("error: ") + error.what());

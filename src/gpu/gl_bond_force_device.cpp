@@ -1,6 +1,7 @@
 #include "gpu/gl_bond_force_device.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <limits>
 #include <mutex>
 #include <stdexcept>
@@ -50,6 +51,18 @@ std::vector<T> slot_major(const BondStore& bonds, int slots, T fill, F value_of)
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b)
       out[static_cast<size_t>(b - bonds.row[i]) * n + i] = value_of(i, b);
   return out;
+}
+
+// An error of the driver after `what`, as a DeviceError naming it (a lost context in words).
+void check_device(const char* what) {
+  const GLenum error = glGetError();
+  if (error == GL_NO_ERROR) return;
+  if (error == GL_CONTEXT_LOST)
+    throw DeviceError(std::string("the GPU's context was lost in ") + what +
+                      " (the driver reset it, or the GPU stalled or went away); the run stops here");
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04x", error);
+  throw DeviceError(std::string("OpenGL error ") + code + " in " + what + "; the run stops here");
 }
 
 }  // namespace
@@ -204,7 +217,7 @@ void GlBondForceDevice::add_forces(BondStore& bonds, const DeviceEvaluation& e) 
   dispatch(last_);
   read_forces(e);
   if (e.breaking) mark_broken(bonds, e);
-  check_gl("the GPU bond-force pass");
+  check_device("the GPU bond-force pass");
 }
 
 void GlBondForceDevice::dispatch(const Pass& pass) {
@@ -236,7 +249,7 @@ void GlBondForceDevice::repeat_last_pass() {
   EglContext::Scope current(context_->egl());
   dispatch(last_);
   glFinish();
-  check_gl("the GPU bond-force pass");
+  check_device("the GPU bond-force pass");
 }
 
 BondForceDeviceFactory gl_bond_force_device_factory(const std::string& resource_root) {

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "pd/bond_store.h"
@@ -30,6 +31,14 @@ enum class DevicePrecision { kFp64, kFp32 };
 // "fp64" / "fp32", as solver.precision spells them, and back (anything else: fp64).
 const char* precision_name(DevicePrecision precision);
 DevicePrecision device_precision(const std::string& name);
+
+// A device that failed mid-run: a lost context (a driver reset, a GPU removed or stalled past the
+// watchdog), an error of the driver in a pass. The run stops as for a numerical failure (exit 3),
+// the rows and frames written so far kept.
+class DeviceError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // One evaluation on a device. Positions and velocities are interleaved [x0 y0 x1 y1 ...].
 struct DeviceEvaluation {

@@ -17,8 +17,9 @@ struct ProgramResult {
   std::string output;
 };
 
-inline ProgramResult run_periflex(const std::string& arguments) {
-  const std::string command = std::string(PERIFLEX_BINARY) + " " + arguments + " 2>&1";
+// A command line run by the shell, its standard error with its output.
+inline ProgramResult run_periflex_command(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   ProgramResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return result;
@@ -28,6 +29,10 @@ inline ProgramResult run_periflex(const std::string& arguments) {
   const int status = pclose(pipe);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
   return result;
+}
+
+inline ProgramResult run_periflex(const std::string& arguments) {
+  return run_periflex_command(std::string(PERIFLEX_BINARY) + " " + arguments);
 }
 
 inline std::string read_text(const std::filesystem::path& path) {

@@ -72,16 +72,8 @@ TEST(DeviceOption, RefusesALawTheGpuDoesNotRun) {
 
 // `periflex run ... --device gpu` with `environment` before it in the shell.
 ProgramResult run_gpu_with(const std::string& environment, const fs::path& out) {
-  const std::string command = environment + " " + PERIFLEX_BINARY + " run " + scene("notched_plate.toml") +
-                              " --quiet --until 1e-5 --device gpu --out " + out.string() + " 2>&1";
-  ProgramResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  char buffer[4096];
-  for (size_t n; (n = fread(buffer, 1, sizeof buffer, pipe)) > 0;) result.output.append(buffer, n);
-  const int status = pclose(pipe);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  return result;
+  return run_periflex_with(environment, "run " + scene("notched_plate.toml") + " --quiet --until 1e-5 --device gpu --out " +
+                                            out.string());
 }
 
 // No EGL driver at all (glvnd's vendor file pointed at nothing): exit 2 naming what is missing,

@@ -28,6 +28,11 @@ inline const std::string& compute_unavailable() {
 #define REQUIRE_PROGRAM_COMPUTE_CONTEXT() \
   if (!compute_unavailable().empty()) GTEST_SKIP() << "no OpenGL compute context here: " << compute_unavailable()
 
+// `periflex ARGUMENTS` with `environment` (VAR=value ...) before it in the shell.
+inline ProgramResult run_periflex_with(const std::string& environment, const std::string& arguments) {
+  return run_periflex_command(environment + " " + PERIFLEX_BINARY + " " + arguments);
+}
+
 // Whether two runs' series.csv hold the same rows bit for bit, the machine's speed left out.
 inline bool same_rows(const Series& a, const Series& b) {
   if (a.columns != b.columns || a.rows.size() != b.rows.size()) return false;

@@ -3,6 +3,8 @@
 // runs of one scene, and checkpoints written on one device continued on the other.
 #include <gtest/gtest.h>
 
+#include <csignal>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -10,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "../cli/child_run.h"
 #include "gpu_program_support.h"
 
 namespace periflex::testing {
@@ -125,6 +128,60 @@ TEST(GpuRun, CheckpointsContinueOnTheOtherDevice) {
       }
     }
   }
+}
+
+// Whether every row of a series is whole and finite, its times rising.
+void expect_valid_rows(const Series& s, const std::string& what) {
+  EXPECT_EQ(s.incomplete_rows, 0) << what;
+  for (size_t r = 0; r < s.rows.size(); ++r) {
+    for (double value : s.rows[r]) EXPECT_TRUE(std::isfinite(value)) << what << ", row " << r;
+    if (r > 0) {
+      EXPECT_GT(s.rows[r][0], s.rows[r - 1][0]) << what << ", row " << r;
+    }
+  }
+}
+
+// The GPU's context lost part-way (a preloaded stand-in answers GL_CONTEXT_LOST after 150 passes,
+// about step 150 of 300): exit 3 naming the GPU's failure, the rows before it whole, summary.json
+// saying what happened and where the run stopped.
+TEST(GpuRun, LostContextStopsWithExit3AndValidOutputs) {
+  REQUIRE_PROGRAM_COMPUTE_CONTEXT();
+  const fs::path out = fresh_directory("gpu_lost");
+  const ProgramResult r =
+      run_periflex_with(std::string("LD_PRELOAD=") + PERIFLEX_GL_LOST_CONTEXT_SHIM + " PERIFLEX_TEST_GL_LOST_AFTER=150",
+                        "run " + cracking_plate() + " --device gpu --out " + out.string());
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("GPU failure"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("context was lost"), std::string::npos) << r.output;
+  const Series s = read_series(out / "series.csv");
+  expect_valid_rows(s, "lost context");
+  ASSERT_GE(s.rows.size(), 3u);
+  EXPECT_LT(s.rows.back()[0], 1.2e-4);
+  const auto summary = read_summary(out / "summary.json");
+  EXPECT_EQ(summary["exit_code"], 3);
+  EXPECT_EQ(summary["status"], "device_failure");
+  EXPECT_EQ(summary["device"], "gpu");
+  // the time of the last whole step, at or after the last row and before the end
+  EXPECT_GE(summary["simulated_time"].get<double>(), s.rows.back()[0]);
+  EXPECT_LT(summary["simulated_time"].get<double>(), 1.2e-4);
+}
+
+// Ctrl-C while the GPU runs: the run stops cleanly (exit 130) with whole rows and a summary.
+TEST(GpuRun, InterruptedRunLeavesValidOutputs) {
+  REQUIRE_PROGRAM_COMPUTE_CONTEXT();
+  const fs::path out = fresh_directory("gpu_interrupt");
+  Child child({"run", scene("notched_plate.toml"), "--quiet", "--device", "gpu", "--out", out.string()});
+  ASSERT_TRUE(child.started());
+  child.wait_until([&] { return read_series(out / "series.csv").rows.size() >= 4; }, 60);
+  child.send(SIGINT);
+  const ChildResult result = child.finish(60);
+  EXPECT_EQ(result.exit_code, 130) << result.output;
+  const Series s = read_series(out / "series.csv");
+  expect_valid_rows(s, "interrupted");
+  ASSERT_GE(s.rows.size(), 4u);
+  const auto summary = read_summary(out / "summary.json");
+  EXPECT_EQ(summary["status"], "interrupted");
+  EXPECT_EQ(summary["device"], "gpu");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "cli/device_option.h"
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "scene/grid_scan.h"
@@ -80,6 +81,7 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
     std::printf("  %-22s%.3g MB (limit %.3g MB)\n", "memory estimate", budget.memory / 1e6,
                 memory_cap(scene.limits) / 1e6);
   }
+  if (m.flex_bodies > 0) std::printf("  %-22s%s\n", "device", device_report(scene).c_str());
   std::printf("  %-22s%.3g (positions), %.3g (velocities)\n", "initial correction", m.initial_position_correction,
               m.initial_velocity_correction);
   for (const auto& w : m.warnings) std::printf("warning: %s\n", w.c_str());

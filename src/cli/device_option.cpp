@@ -40,4 +40,17 @@ std::string apply_device_option(const std::string& device, SceneDef& scene) {
   }
 }
 
+std::string device_report(const SceneDef& scene) {
+  const std::string precision = scene.solver.precision;
+  std::string report = scene.solver.device + " (solver.device); the GPU path (" + precision + "): ";
+  for (const FlexBodyDef& def : scene.flex_bodies)
+    if (def.material.model != PdMaterialDef::Model::kBondBased)
+      return report + "not for this scene: flexible body '" + def.name + "' has a law that runs only on the CPU";
+  try {
+    return report + "available, " + make_bond_force_device(device_precision(precision))->description();
+  } catch (const std::exception& e) {
+    return report + "not here: " + e.what();
+  }
+}
+
 }  // namespace periflex

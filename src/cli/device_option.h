@@ -25,4 +25,9 @@ class GpuBackendInstallation {
 // renderer: ..."), empty for the CPU.
 std::string apply_device_option(const std::string& device, SceneDef& scene);
 
+// For `periflex check`: where the scene's forces run and whether the GPU path could run it here,
+// and if not, why ("cpu (solver.device); the GPU path (fp64): available, OpenGL ...", or "...: not
+// here: no OpenGL 4.3 context ..."). Makes a compute context to find out.
+std::string device_report(const SceneDef& scene);
+
 }  // namespace periflex

@@ -74,6 +74,8 @@ CLI::App* add_sweep_subcommand(CLI::App& app, SweepOptions& o) {
   cmd->add_option("--jobs-file", o.jobs_file,
                   "Write one command line per run here (GNU parallel) and sweep.slurm beside the runs; run nothing");
   cmd->add_option("--collect", o.collect_dir, "Gather the runs of this sweep folder into sweep.csv");
+  cmd->add_option("--device", o.device, "Where every run's bond forces run: cpu or gpu (overrides solver.device)")
+      ->check(CLI::IsMember({"cpu", "gpu"}));
   cmd->add_flag("--quiet", o.quiet, "Print only failed runs and where the results went");
   return cmd;
 }

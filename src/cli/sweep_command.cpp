@@ -30,15 +30,22 @@ std::string shell_word(const std::string& word) {
   return out + "'";
 }
 
+// How each run is started: the program, and the device it is told (empty: the scene's).
+struct RunLauncher {
+  std::string program, device;
+};
+
 // The command line of one run: the program, the scene, every override, its folder.
-std::vector<std::string> run_argv(const std::string& program, const SweepDef& sweep, const SweepRun& run,
+std::vector<std::string> run_argv(const RunLauncher& launcher, const SweepDef& sweep, const SweepRun& run,
                                   const fs::path& folder) {
+  const std::string& program = launcher.program;
   std::vector<std::string> argv = {program, "run", fs::absolute(sweep.scene_path).string()};
   for (const std::string& set : run.overrides) {
     argv.push_back("--set");
     argv.push_back(set);
   }
   argv.insert(argv.end(), {"--out", fs::absolute(folder).string(), "--quiet", "--threads", "1"});
+  if (!launcher.device.empty()) argv.insert(argv.end(), {"--device", launcher.device});
   return argv;
 }
 
@@ -214,7 +221,7 @@ std::string collect(const fs::path& dir) {
 // returns how many failed. Ctrl-C or SIGTERM (cli/interrupt.h) is passed on to the runs under
 // way, which stop cleanly as a run does, and no further run starts.
 int run_locally(const SweepDef& sweep, const std::vector<SweepRun>& runs, const fs::path& out, int jobs,
-                bool quiet, const std::string& program) {
+                bool quiet, const RunLauncher& launcher) {
   ChildLimits limits;
   limits.timeout_seconds = sweep.timeout_seconds;
   limits.memory_bytes = sweep.memory_bytes;
@@ -226,7 +233,7 @@ int run_locally(const SweepDef& sweep, const std::vector<SweepRun>& runs, const 
     for (size_t k = next++; k < runs.size() && pending_interrupt() == 0; k = next++) {
       const fs::path folder = out / runs[k].folder;
       fs::create_directories(folder);
-      const ChildResult result = run_child(run_argv(program, sweep, runs[k], folder), limits);
+      const ChildResult result = run_child(run_argv(launcher, sweep, runs[k], folder), limits);
       std::ofstream((folder / "log.txt").string()) << result.output;
       const bool ok = result.started && result.signal == 0 && !result.timed_out && result.exit_code == 0;
       if (!ok && !result.interrupted) ++failed;
@@ -251,10 +258,10 @@ int run_locally(const SweepDef& sweep, const std::vector<SweepRun>& runs, const 
 
 // The command lines for GNU parallel, and a Slurm array script that runs line N as task N.
 void write_jobs(const SweepDef& sweep, const std::vector<SweepRun>& runs, const fs::path& out,
-                const std::string& jobs_file, const std::string& program) {
+                const std::string& jobs_file, const RunLauncher& launcher) {
   std::ostringstream lines;
   for (const SweepRun& run : runs) {
-    const std::vector<std::string> argv = run_argv(program, sweep, run, out / run.folder);
+    const std::vector<std::string> argv = run_argv(launcher, sweep, run, out / run.folder);
     for (size_t k = 0; k < argv.size(); ++k) lines << (k ? " " : "") << shell_word(argv[k]);
     lines << '\n';
   }
@@ -289,7 +296,7 @@ int sweep_command(const SweepOptions& options) {
 }
 
 int sweep_or_throw(const SweepOptions& options) {
-  const std::string program = options.program.empty() ? current_executable() : options.program;
+  const RunLauncher launcher{options.program.empty() ? current_executable() : options.program, options.device};
   if (!options.collect_dir.empty()) {
     std::printf("%s\n", collect(options.collect_dir).c_str());
     return kExitOk;
@@ -304,7 +311,7 @@ int sweep_or_throw(const SweepOptions& options) {
   fs::create_directories(out);
   write_plan(sweep, runs, out);
   if (!options.jobs_file.empty()) {
-    write_jobs(sweep, runs, out, options.jobs_file, program);
+    write_jobs(sweep, runs, out, options.jobs_file, launcher);
     std::printf("wrote %s (%zu runs: parallel --jobs N < %s)\nwrote %s (sbatch)\n", options.jobs_file.c_str(),
                 runs.size(), options.jobs_file.c_str(), (out / "sweep.slurm").string().c_str());
     std::printf("then: periflex sweep --collect %s\n", out.string().c_str());
@@ -313,7 +320,7 @@ int sweep_or_throw(const SweepOptions& options) {
   const int jobs = options.jobs > 0 ? options.jobs : sweep.jobs;
   if (!options.quiet) std::printf("sweep %s: %zu runs, %d at once\n", sweep.name.c_str(), runs.size(), jobs);
   catch_interrupts();
-  const int failed = run_locally(sweep, runs, out, jobs, options.quiet, program);
+  const int failed = run_locally(sweep, runs, out, jobs, options.quiet, launcher);
   std::printf("%s\n", collect(out).c_str());
   if (const int signal_number = pending_interrupt()) {
     std::fprintf(stderr,

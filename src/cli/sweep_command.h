@@ -18,6 +18,7 @@ struct SweepOptions {
   std::string collect_dir;  // gather the runs of this folder into sweep.csv
   bool quiet = false;
   std::string program;      // the program each run starts (`PROGRAM run ...`); empty: this one
+  std::string device;       // --device of every run (cpu | gpu); empty: as the scene says
 };
 
 // Returns the exit code: 0 every run ok (or the files written), 2 bad input, 1 a run failed.

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -182,6 +183,42 @@ TEST(GpuRun, InterruptedRunLeavesValidOutputs) {
   const auto summary = read_summary(out / "summary.json");
   EXPECT_EQ(summary["status"], "interrupted");
   EXPECT_EQ(summary["device"], "gpu");
+}
+
+// `periflex check` says whether the GPU path could run the scene here, and why not.
+TEST(GpuRun, CheckSaysWhetherTheGpuPathRunsHere) {
+  const ProgramResult law = run_periflex("check " + scene("notched_plate_models.toml"));
+  EXPECT_NE(law.output.find("not for this scene: flexible body"), std::string::npos) << law.output;
+  const ProgramResult no_egl =
+      run_periflex_with("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent/vendor.json", "check " + scene("notched_plate.toml"));
+  EXPECT_EQ(no_egl.exit_code, 0) << no_egl.output;
+  EXPECT_NE(no_egl.output.find("the GPU path (fp64): not here: "), std::string::npos) << no_egl.output;
+  EXPECT_NE(no_egl.output.find("EGL"), std::string::npos) << no_egl.output;
+  if (!compute_unavailable().empty()) return;
+  const ProgramResult here = run_periflex("check " + scene("notched_plate.toml") + " --set solver.precision=fp32");
+  EXPECT_EQ(here.exit_code, 0) << here.output;
+  EXPECT_NE(here.output.find("the GPU path (fp32): available, OpenGL compute fp32"), std::string::npos) << here.output;
+}
+
+// `periflex sweep --device gpu`: every run of the sweep runs its forces on the GPU.
+TEST(GpuRun, SweepPassesTheDeviceToEveryRun) {
+  REQUIRE_PROGRAM_COMPUTE_CONTEXT();
+  const fs::path dir = fresh_directory("gpu_sweep");
+  {
+    std::ofstream file(dir / "sweep.toml");
+    file << "[sweep]\nscene = \"" << scene("notched_plate.toml") << "\"\nset = [\"solver.end_time=8e-6\"]\n"
+         << "jobs = 1\n\n[[parameter]]\nkey = \"flex_body.plate.material.fracture_energy\"\nvalues = [150.0, 300.0]\n";
+  }
+  const ProgramResult r = run_periflex("sweep " + (dir / "sweep.toml").string() + " --quiet --device gpu --out " +
+                                       (dir / "out").string());
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int runs = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(dir / "out")) {
+    if (entry.path().filename() != "summary.json") continue;
+    EXPECT_EQ(read_summary(entry.path())["device"], "gpu") << entry.path();
+    ++runs;
+  }
+  EXPECT_EQ(runs, 2);
 }
 
 }  // namespace

@@ -161,7 +161,7 @@ elseif(TARGET periflex_app AND PERIFLEX_XVFB_RUN)
   # inspector of a rigid body clicked, the drawing of active contacts (key and box), the history
   # (Left, Right, the timeline slider, resume), the reload of a DXF drawing the scene reads
   foreach(case record_png record_plot record_mp4 record_gif record_interrupted keys damping refusal unstable spring pull
-               deform teach inspect plot plot_series knife body contacts history specimen_reload)
+               pull_gpu deform teach inspect plot plot_series knife body contacts history specimen_reload)
     gui_input_test(${case})
   endforeach()
 

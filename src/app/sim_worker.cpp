@@ -30,7 +30,8 @@ SimWorker::SimWorker(ModelFactory factory, const std::string& scene_path,
   scene_ = factory_.load(scene_path_, overrides_);
   model_ = factory_.build(scene_);
   scene_generation_ = 1;
-  log_.add("loaded scene '" + scene_.name + "' from " + scene_path_);
+  log_.add("loaded scene '" + scene_.name + "' from " + scene_path_ +
+           (scene_.solver.device == "gpu" ? ", bond forces on the GPU in " + scene_.solver.precision : ""));
   history_defaults();
   publish();
 }

@@ -84,6 +84,8 @@ int gui_command(const GuiCommandOptions& options) {
   }
   gui.scene_path = options.scene_path;
   gui.overrides = options.overrides;
+  // the device as a key of every scene the window loads, reloads included
+  if (!options.device.empty()) gui.overrides.push_back("solver.device=" + options.device);
   gui.frames = options.frames;
   gui.screenshot = options.screenshot;
   gui.script = options.script;

@@ -16,6 +16,7 @@ struct GuiCommandOptions {
   std::string size;        // "WxH" window size; empty: 1280x800
   std::string deform;      // deformation magnification "auto" or K >= 0; empty: auto
   std::string playback_dir;  // `periflex play DIR`: a checkpoint folder instead of a scene
+  std::string device;        // --device: cpu | gpu for every scene the window loads; empty: solver.device
 };
 
 // Parses "WxH" (640 <= W, 480 <= H, both at most 16384) into width and height; false when it is

@@ -192,6 +192,9 @@ int run_main(int argc, char** argv) {
   gui_cmd->add_option("--size", gui.size, "Window size WxH in screen pixels (default 1280x800, at least 640x480)")
       ->check(CLI::Validator(parse_window_size_check, "WxH"));
   add_deform_option(gui_cmd, gui.deform);
+  gui_cmd->add_option("--device", gui.device,
+                      "Where the flexible bodies' bond forces run: cpu or gpu (overrides solver.device)")
+      ->check(CLI::IsMember({"cpu", "gpu"}));
 
   GuiCommandOptions play;
   auto* play_cmd = app.add_subcommand("play", "Open the visualiser on a checkpoint folder (or a run's VTK series) and move through its states");

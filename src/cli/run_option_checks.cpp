@@ -260,7 +260,10 @@ std::vector<std::string> plot_columns_checked(const RunOptions& options, const s
 void check_gui_options(const GuiCommandOptions& options) {
   if (!options.screenshot.empty()) check_writable_file("--screenshot", options.screenshot);
   if (!parse_deform_check(options.deform).empty()) fail("--deform", parse_deform_check(options.deform));
-  if (!options.scene_path.empty()) load_scene_with_options(options.scene_path, options.overrides);
+  if (options.scene_path.empty()) return;
+  SceneDef scene = load_scene_with_options(options.scene_path, options.overrides);
+  // the GPU refused here (a law it does not run, no compute context), before a window opens
+  apply_device_option(options.device, scene);
 }
 
 }  // namespace periflex

@@ -9,7 +9,7 @@
 # Usage (inside an X display, e.g. under xvfb-run):
 #   gui_input.sh CASE PERIFLEX SCENES_DIR OUT_DIR [GUI_PNG_CHECK]
 # CASE: record_png | record_plot | record_mp4 | record_gif | record_interrupted | keys | damping | refusal | unstable |
-#       spring | pull | deform | teach | inspect | plot | plot_series | knife | body | contacts | history
+#       spring | pull | pull_gpu | deform | teach | inspect | plot | plot_series | knife | body | contacts | history
 set -uo pipefail
 
 case_name=$1 periflex=$2 scenes=$3 out=$4 png_check=${5:-}

@@ -117,7 +117,17 @@ input_case_unstable() {
   quit
 }
 
-input_case_pull() {
+input_case_pull() { pull_across_the_notch; }
+
+# the same pull with the plate's bond forces on the GPU (OpenGL compute through EGL beside the
+# window's own context; Mesa llvmpipe in CI): the drag tears it the same way
+input_case_pull_gpu() {
+  pull_across_the_notch --device gpu
+  grep -q "bond forces on the GPU in fp64" "$log" || fail "the log does not say the forces ran on the GPU"
+}
+
+# Extra arguments go to `periflex gui`.
+pull_across_the_notch() {
   # the notched plate with its grips held still (any crack is the drag's): pressed just right
   # of the notch, below its tip, and dragged 10 mm to the right in about a second, as a hand
   # pulls. The anchor walks at its capped speed in simulated time and its pull stays under its
@@ -125,7 +135,7 @@ input_case_pull() {
   # (A patch pressed at the notch's mouth, 3 mm from the free edge, may also shear off the thin
   # strip between it and the held right grip: that strip gives at the same pull as the notch tip,
   # so MouseGrip.DragAcrossTheNotchTearsTheLigamentWithoutDust judges that case by its dust.)
-  start notched_plate.toml --set driver.left_turn.function.rate=0 --set driver.right_turn.function.rate=0
+  start notched_plate.toml --set driver.left_turn.function.rate=0 --set driver.right_turn.function.rate=0 "$@"
   mapping=""
   wait_until 20 "a steady view" '[[ -n "$mapping" && "$mapping" == "$(state world_to_window)" ]] || { mapping=$(state world_to_window); sleep 0.5; false; }'
   read -r x y < <(to_window 0.003 -0.013)

@@ -1,14 +1,25 @@
 #include "cli/device_option.h"
 
+#include <cmath>
+
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "core/resources.h"
+#include "scene/scene_budget.h"
+#include "scene/toml_reader.h"
 #include "pd/bond_force_device.h"
 #ifdef PERIFLEX_WITH_GPU
 #include "gpu/gl_bond_force_device.h"
 #endif
 
 namespace periflex {
+
+namespace {
+
+// "1.49 MB", "3.2e+03 MB": memory as the message reads it
+std::string megabytes(double bytes) { return format_number(std::round(bytes / 1e4) / 1e2) + " MB"; }
+
+}  // namespace
 
 GpuBackendInstallation::GpuBackendInstallation() {
 #ifdef PERIFLEX_WITH_GPU
@@ -33,11 +44,23 @@ std::string apply_device_option(const std::string& device, SceneDef& scene) {
   }
   // then the context and the precision's program: made here, before the model, and kept for the
   // bodies' devices
+  const DevicePrecision precision = device_precision(scene.solver.precision);
+  std::unique_ptr<BondForceDevice> gpu;
   try {
-    return make_bond_force_device(device_precision(scene.solver.precision))->description();
+    gpu = make_bond_force_device(precision);
   } catch (const std::exception& e) {
     throw InputError(where, std::string("no GPU compute here: ") + e.what() + " (" + leave_out + " to run on the CPU)");
   }
+  // the bodies' bonds must fit the GPU's free memory (where its driver says how much that is)
+  const SceneBudget budget = check_scene_budget(scene);
+  const double needed = device_bytes_needed(budget.particles, 2.0 * budget.bonds, precision);
+  const double free = gpu->free_memory();
+  if (free >= 0.0 && needed > free)
+    throw InputError(where, "the flexible bodies need about " + megabytes(needed) + " of GPU memory (" +
+                                format_count(budget.particles) + " particles, " + scene.solver.precision +
+                                ") and the GPU has " + megabytes(free) + " free; raise grid_spacing or lower "
+                                "horizon_ratio, or " + leave_out + " to run on the CPU");
+  return gpu->description();
 }
 
 std::string device_report(const SceneDef& scene) {

@@ -244,6 +244,21 @@ void GlBondForceDevice::dispatch(const Pass& pass) {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
 }
 
+double GlBondForceDevice::free_memory() {
+  EglContext::Scope current(context_->egl());
+  constexpr GLenum kNvidiaAvailable = 0x9049;  // GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, kB
+  constexpr GLenum kAmdFree = 0x87FC;          // GL_TEXTURE_FREE_MEMORY_ATI: free kB first of four
+  while (glGetError() != GL_NO_ERROR) {
+  }
+  // a query the driver does not know raises GL_INVALID_ENUM and leaves the value alone
+  for (GLenum query : {kNvidiaAvailable, kAmdFree}) {
+    GLint values[4] = {-1, -1, -1, -1};
+    glGetIntegerv(query, values);
+    if (glGetError() == GL_NO_ERROR && values[0] >= 0) return static_cast<double>(values[0]) * 1024.0;
+  }
+  return -1.0;
+}
+
 void GlBondForceDevice::repeat_last_pass() {
   if (particles_ == 0) return;
   EglContext::Scope current(context_->egl());

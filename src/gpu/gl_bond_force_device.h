@@ -29,6 +29,9 @@ class GlBondForceDevice : public BondForceDevice {
 
   const std::string& description() const override { return description_; }
   DevicePrecision precision() const { return precision_; }
+  // From NVIDIA's GL_NVX_gpu_memory_info or AMD's GL_ATI_meminfo; negative where neither answers
+  // (Mesa's llvmpipe, Intel).
+  double free_memory() override;
   void upload(const BondStore& bonds, const uint8_t* no_fail, const double* reference) override;
   void bonds_changed() override { stiffness_stale_ = true; }
   void add_forces(BondStore& bonds, const DeviceEvaluation& e) override;

@@ -34,6 +34,14 @@ const char* precision_name(DevicePrecision precision) {
   return precision == DevicePrecision::kFp32 ? "fp32" : "fp64";
 }
 
+double device_bytes_needed(double particles, double directed_bonds, DevicePrecision precision) {
+  const bool fp32 = precision == DevicePrecision::kFp32;
+  const double per_direction = 4.0 + 1.0 + 4.0 + (fp32 ? 8.0 : 0.0);
+  const double real = fp32 ? 4.0 : 8.0;
+  const double per_particle = 4.0 + 4.0 + 1.0 + 7.0 * real;
+  return directed_bonds * per_direction + particles * per_particle;
+}
+
 DevicePrecision device_precision(const std::string& name) {
   return name == "fp32" ? DevicePrecision::kFp32 : DevicePrecision::kFp64;
 }

@@ -60,6 +60,8 @@ class BondForceDevice {
   virtual ~BondForceDevice() = default;
   // What runs the evaluations, e.g. "OpenGL 4.5 compute fp64; renderer: llvmpipe (LLVM 15.0.7, 256 bits)".
   virtual const std::string& description() const = 0;
+  // Bytes of memory the device has free now; negative when its driver does not say.
+  virtual double free_memory() { return -1.0; }
   // Takes the body's bonds (topology, stiffness, broken flags), no-fail flags (null: none) and
   // reference positions (interleaved, 2 n), once; the device keeps them for every later evaluation.
   virtual void upload(const BondStore& bonds, const uint8_t* no_fail, const double* reference) = 0;
@@ -70,6 +72,12 @@ class BondForceDevice {
   // the bonds it left out in bonds.broken.
   virtual void add_forces(BondStore& bonds, const DeviceEvaluation& e) = 0;
 };
+
+// Bytes a device holds for bodies of `particles` particles and `directed_bonds` stored bond
+// directions (each bond counted from both ends) in that precision: per stored direction its slot
+// (neighbour 4, length class 1, stiffness 4; fp32 also the reference bond vector, 8), per particle
+// its row length, break bits, no-fail flag and state (positions, velocities, forces, row maximum).
+double device_bytes_needed(double particles, double directed_bonds, DevicePrecision precision);
 
 // Makes a device for one body; throws std::runtime_error saying what is missing when it cannot.
 using BondForceDeviceFactory = std::function<std::unique_ptr<BondForceDevice>(DevicePrecision)>;

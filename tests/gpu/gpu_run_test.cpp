@@ -149,7 +149,7 @@ TEST(GpuRun, LostContextStopsWithExit3AndValidOutputs) {
   REQUIRE_PROGRAM_COMPUTE_CONTEXT();
   const fs::path out = fresh_directory("gpu_lost");
   const ProgramResult r =
-      run_periflex_with(std::string("LD_PRELOAD=") + PERIFLEX_GL_LOST_CONTEXT_SHIM + " PERIFLEX_TEST_GL_LOST_AFTER=150",
+      run_periflex_with(std::string("LD_PRELOAD=") + PERIFLEX_GL_FAULT_SHIM + " PERIFLEX_TEST_GL_LOST_AFTER=150",
                         "run " + cracking_plate() + " --device gpu --out " + out.string());
   EXPECT_EQ(r.exit_code, 3) << r.output;
   EXPECT_NE(r.output.find("GPU failure"), std::string::npos) << r.output;
@@ -219,6 +219,25 @@ TEST(GpuRun, SweepPassesTheDeviceToEveryRun) {
     ++runs;
   }
   EXPECT_EQ(runs, 2);
+}
+
+// A GPU with too little memory free for the scene's bonds (its driver's answer stood in for by a
+// preloaded library, as NVIDIA's GL_NVX_gpu_memory_info gives it): refused before the run, exit 2
+// naming --device, what the scene needs and what is free; with room enough it runs.
+TEST(GpuRun, RefusesAScenePastTheGpusFreeMemory) {
+  REQUIRE_PROGRAM_COMPUTE_CONTEXT();
+  const fs::path dir = fresh_directory("gpu_memory");
+  const std::string run = "run " + scene("notched_plate.toml") + " --quiet --until 1e-5 --device gpu --out ";
+  const std::string shim = std::string("LD_PRELOAD=") + PERIFLEX_GL_FAULT_SHIM;
+  // the notched plate's 4,000 particles and 136k bond directions hold about 1.5 MB
+  const ProgramResult small = run_periflex_with(shim + " PERIFLEX_TEST_GPU_FREE_KB=1000", run + (dir / "small").string());
+  EXPECT_EQ(small.exit_code, 2) << small.output;
+  EXPECT_NE(small.output.find("--device"), std::string::npos) << small.output;
+  EXPECT_NE(small.output.find("MB of GPU memory"), std::string::npos) << small.output;
+  EXPECT_NE(small.output.find("1.02 MB free"), std::string::npos) << small.output;
+  EXPECT_FALSE(fs::exists(dir / "small" / "series.csv"));
+  const ProgramResult room = run_periflex_with(shim + " PERIFLEX_TEST_GPU_FREE_KB=4000", run + (dir / "room").string());
+  EXPECT_EQ(room.exit_code, 0) << room.output;
 }
 
 }  // namespace

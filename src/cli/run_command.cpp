@@ -157,10 +157,10 @@ RunOutcome run_and_report(const RunOptions& requested) {
 
   // a restart: the checkpoint must belong to this scene and program (refused with exit 2)
   const bool checkpointing = options.checkpoint_every > 0.0;
-  const uint64_t scene_hash = checkpointing || !options.restart_path.empty() ? run_scene_hash(options) : 0;
+  const uint64_t scene_hash = checkpointing || !options.restart_path.empty() ? run_scene_hash(options, scene) : 0;
   std::optional<SimState> restart;
   CheckpointHeader restart_header;
-  if (!options.restart_path.empty()) restart = load_restart(options, scene_hash, scene.solver.end_time, restart_header);
+  if (!options.restart_path.empty()) restart = load_restart(options, scene, scene_hash, restart_header);
   // the folder names its scene, so it can be replayed on its own (`periflex play DIR`)
   if (checkpointing) {
     RunRecord record;

@@ -131,6 +131,18 @@ SimCommand set_bond_damping(long value) {
   return c;
 }
 
+// Sends two requests one after the other and waits until each is applied: between the two the
+// worker has gone once round its loop (requests, then a step when one is due), so a step it was
+// still to take has been taken when this returns. (A setting, not a pause: a pause would clear
+// the steps still asked for and hide one too many.)
+void wait_two_rounds(SimWorker& worker) {
+  for (int round = 0; round < 2; ++round) {
+    const long before = worker.status().commands_applied;
+    worker.send(set_bond_damping(0));
+    ASSERT_TRUE(wait_until(worker, [before](const WorkerStatus& s) { return s.commands_applied > before; }));
+  }
+}
+
 TEST(SimWorker, RequestsApplyBetweenStepsInTheOrderSent) {
   FakeLog log;
   EventLog events(false);
@@ -171,7 +183,7 @@ TEST(SimWorker, PausedWorkerTakesExactlyTheStepsAsked) {
   worker.send(step);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 5; }));
   // paused again after the five: no further steps happen
-  std::this_thread::sleep_for(50ms);
+  wait_two_rounds(worker);
   EXPECT_EQ(worker.status().step, 5);
   EXPECT_FALSE(worker.status().running);
   // the render side sees the snapshot of step 5
@@ -190,7 +202,7 @@ TEST(SimWorker, StepToTimeStopsAtTheFirstStepAtOrAfterIt) {
   SimCommand to{command::StepTo{0.1}, "test"};
   worker.send(to);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 34; }));
-  std::this_thread::sleep_for(50ms);
+  wait_two_rounds(worker);
   EXPECT_EQ(worker.status().step, 34);
   EXPECT_FALSE(worker.status().running);
   // a time already passed takes no step; a whole number of steps lands on it
@@ -199,7 +211,7 @@ TEST(SimWorker, StepToTimeStopsAtTheFirstStepAtOrAfterIt) {
   std::get<command::StepTo>(to.action).time = 34 * 3e-3 + 6e-3;
   worker.send(to);
   ASSERT_TRUE(wait_until(worker, [](const WorkerStatus& s) { return s.step == 36; }));
-  std::this_thread::sleep_for(50ms);
+  wait_two_rounds(worker);
   EXPECT_EQ(worker.status().step, 36);
   worker.stop();
 }

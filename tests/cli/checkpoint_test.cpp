@@ -190,6 +190,36 @@ TEST(Checkpoint, ForeignTruncatedDamagedAndOtherVersionsAreRefused) {
   EXPECT_NE(missing.output.find("--restart"), std::string::npos) << missing.output;
 }
 
+// A scene whose body is read from a point file: its checkpoint continues while the file is the
+// same, and is refused, naming the file, once the file has changed (the state's particles may then
+// be other ones, or in another order, as here).
+TEST(Checkpoint, RefusedWhenTheShapesFileChanged) {
+  const fs::path dir = fresh_directory("checkpoint_shape_file");
+  fs::create_directories(dir / "specimens");
+  fs::copy_file(scene("brazilian_disc_points.toml"), dir / "disc.toml");
+  const fs::path points = dir / "specimens" / "brazilian_disc_mm.txt";
+  fs::copy_file(scene("specimens/brazilian_disc_mm.txt"), points);
+  const std::string run = "run " + (dir / "disc.toml").string() + " --quiet --until 3e-6 ";
+  const auto first = run_periflex(run + "--checkpoint-every 1.5e-6 --out " + (dir / "first").string());
+  ASSERT_EQ(first.exit_code, 0) << first.output;
+  const auto files = checkpoints_in(dir / "first" / "checkpoints");
+  ASSERT_GE(files.size(), 1u);
+  const auto same = run_periflex(run + "--out " + (dir / "same").string() + " --restart " + files[0].string());
+  EXPECT_EQ(same.exit_code, 0) << same.output;
+  // two points of the file swapped, the scene file untouched: as many particles, each the other's
+  copy_with(points, points, [](std::string& text) {
+    const std::string a = "-1.7500 -9.7500 1.2500 1\n", b = "-1.2500 -9.7500 1.2500 1\n";
+    const size_t at = text.find(a + b);
+    ASSERT_NE(at, std::string::npos);
+    text.replace(at, a.size() + b.size(), b + a);
+  });
+  const auto changed = run_periflex(run + "--out " + (dir / "changed").string() + " --restart " + files[0].string());
+  EXPECT_EQ(changed.exit_code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("--restart"), std::string::npos) << changed.output;
+  EXPECT_NE(changed.output.find("brazilian_disc_mm.txt"), std::string::npos) << changed.output;
+  EXPECT_NE(changed.output.find("changed since"), std::string::npos) << changed.output;
+}
+
 TEST(Checkpoint, BadFlagValuesExitTwoNamingTheFlag) {
   for (const std::string& flags :
        {std::string("--checkpoint-every -1"), std::string("--checkpoint-every nan"), std::string("--checkpoint-every 1e400"),

@@ -158,7 +158,8 @@ double frame_interval(const RunOptions& options, const SolverDef& solver) {
   if (options.frame_every > 0) return options.frame_every;
   const double hundredth = solver.end_time / 100.0;
   // an adaptive integrator has no step to land on
-  if (solver.integrator == "dopri54") return hundredth;
+  const IntegratorTraits* traits = find_integrator(solver.integrator);
+  if (traits != nullptr && traits->is_adaptive) return hundredth;
   // whole steps, so that no step is cut short to land on a frame (the tolerance keeps a
   // hundredth that is a multiple of dt but for round-off from losing a step)
   const double steps = std::max(1.0, std::floor(hundredth / solver.dt * (1 + 1e-9)));

@@ -5,6 +5,7 @@
 #include <limits>
 #include <sstream>
 
+#include "core/parallel_chunks.h"
 #include "pd/pd_material.h"
 
 namespace periflex {
@@ -40,30 +41,35 @@ void set_bond_stiffness(const LawSetup& setup, BondStore& bonds) {
   const int count = bonds.particle_count();
   const double v = setup.volume;
   std::vector<double> gx(count, 1.0), gy(count, 1.0);
+  // each row on its own, on the team's threads: the same bits on any thread count
   if (setup.def.surface_correction) {
     const double w_cont = uniaxial_stress_energy_density(setup.micromodulus, setup.def.thickness, setup.horizon, 1.0);
-    for (int i = 0; i < count; ++i) {
-      double wx = 0.0, wy = 0.0;
-      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-        // linearised stretch n . H n: n_x^2 - n_y^2 / 3 along x, n_y^2 - n_x^2 / 3 along y
-        const double cx = nx2[b], cy = 1.0 - cx;
-        const double sx = cx - cy / 3.0, sy = cy - cx / 3.0;
-        wx += 0.25 * k0[b] / bonds.inv_length(b) * sx * sx;
-        wy += 0.25 * k0[b] / bonds.inv_length(b) * sy * sy;
+    parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) {
+        double wx = 0.0, wy = 0.0;
+        for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+          // linearised stretch n . H n: n_x^2 - n_y^2 / 3 along x, n_y^2 - n_x^2 / 3 along y
+          const double cx = nx2[b], cy = 1.0 - cx;
+          const double sx = cx - cy / 3.0, sy = cy - cx / 3.0;
+          wx += 0.25 * k0[b] / bonds.inv_length(b) * sx * sx;
+          wy += 0.25 * k0[b] / bonds.inv_length(b) * sy * sy;
+        }
+        if (wx > 0.0) gx[i] = w_cont * v / wx;
+        if (wy > 0.0) gy[i] = w_cont * v / wy;
       }
-      if (wx > 0.0) gx[i] = w_cont * v / wx;
-      if (wy > 0.0) gy[i] = w_cont * v / wy;
-    }
+    });
   }
   bonds.stiffness.resize(k0.size());
-  for (int i = 0; i < count; ++i) {
-    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      const int32_t j = bonds.neighbor[b];
-      const double mean_x = 0.5 * (gx[i] + gx[j]), mean_y = 0.5 * (gy[i] + gy[j]);
-      const double cx = nx2[b], cy = 1.0 - cx;
-      bonds.stiffness[b] = static_cast<float>(k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y)));
+  parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
+        const int32_t j = bonds.neighbor[b];
+        const double mean_x = 0.5 * (gx[i] + gx[j]), mean_y = 0.5 * (gy[i] + gy[j]);
+        const double cx = nx2[b], cy = 1.0 - cx;
+        bonds.stiffness[b] = static_cast<float>(k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y)));
+      }
     }
-  }
+  });
 }
 
 double spring_critical_time_step(const BondStore& b, const std::vector<double>& masses) {

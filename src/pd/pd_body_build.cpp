@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/parallel_chunks.h"
 #include "pd/cloud_grid.h"
 #include "pd/neighbor_search.h"
 #include "pd/pd_body_impl.h"
@@ -57,6 +58,9 @@ class PartialVolumes {
 // Bonds to every neighbour with a positive weight that no notch cuts. k0 receives each bond's
 // stiffness before any correction, nx2 the squared x-component of its unit vector.
 // Reference lengths come from the integer grid offsets, so both directions hold identical values.
+// Rows are judged and filled on the team's threads in two passes (which candidates stay, then
+// their values at their places after a prefix sum of the counts): each row's bonds come out in
+// the same order as one thread would make them, so the bonds are the same bits on any count.
 void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& nx2) {
   const FlexBodyDef& def = m.def;
   const PartialVolumes volume_fraction(def);
@@ -66,50 +70,89 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
   const NeighborList nl = find_neighbors(m.grid.x, m.grid.y, reach * (1 + 1e-9));
   const int count = m.n();
   const double v = m.volume.front();
-  bonds.row.assign(count + 1, 0);
-  bonds.neighbor.reserve(nl.col.size());
-  bonds.length_class.reserve(nl.col.size());
-  bonds.grid_spacing = m.dx;
-  k0.reserve(nl.col.size());
-  nx2.reserve(nl.col.size());
-  m.initial_weight.assign(count, 0.0);
+  // a candidate's grid offset, its partial volume and its influence
+  struct Offset {
+    int di, dj;
+    double r2, beta, w;
+  };
+  auto offset_of = [&](int i, int32_t j) {
+    Offset o;
+    o.di = m.grid.ix[j] - m.grid.ix[i];
+    o.dj = m.grid.iy[j] - m.grid.iy[i];
+    o.r2 = double(o.di) * o.di + double(o.dj) * o.dj;
+    o.beta = volume_fraction(o.di, o.dj);
+    o.w = influence(def.influence, m.dx * std::sqrt(o.r2), m.delta);
+    return o;
+  };
+
+  // pass 1: which candidates stay (a positive weight, no notch across), and the weight notches cut
+  std::vector<uint8_t> keep(nl.col.size(), 0);
   std::vector<double> notch_weight(count, 0.0);
-  for (int i = 0; i < count; ++i) {
-    for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
-      const int32_t j = nl.col[b];
-      const int di = m.grid.ix[j] - m.grid.ix[i], dj = m.grid.iy[j] - m.grid.iy[i];
-      const double r2 = double(di) * di + double(dj) * dj;
-      const double r = m.dx * std::sqrt(r2);
-      const double beta = volume_fraction(di, dj);
-      const double w = influence(def.influence, r, m.delta);
-      if (beta <= 0.0 || w <= 0.0) continue;
-      const Vec2 pi(m.grid.x[i], m.grid.y[i]), pj(m.grid.x[j], m.grid.y[j]);
-      bool cut = false;
-      for (const NotchDef& notch : def.notches)
-        cut = cut || notch_cuts_bond(pi, pj, notch.p1, notch.p2, 1e-9 * m.dx * m.dx);
-      if (cut) {
-        notch_weight[i] += beta;  // counted as broken when the scene asks for it
-        continue;
+  bonds.row.assign(count + 1, 0);
+  parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      int64_t kept = 0;
+      for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
+        const int32_t j = nl.col[b];
+        const Offset o = offset_of(static_cast<int>(i), j);
+        if (o.beta <= 0.0 || o.w <= 0.0) continue;
+        const Vec2 pi(m.grid.x[i], m.grid.y[i]), pj(m.grid.x[j], m.grid.y[j]);
+        bool cut = false;
+        for (const NotchDef& notch : def.notches)
+          cut = cut || notch_cuts_bond(pi, pj, notch.p1, notch.p2, 1e-9 * m.dx * m.dx);
+        if (cut) {
+          notch_weight[i] += o.beta;  // counted as broken when the scene asks for it
+          continue;
+        }
+        keep[b] = 1;
+        ++kept;
       }
-      bonds.neighbor.push_back(j);
-      bonds.length_class.push_back(static_cast<uint8_t>(r2));
-      k0.push_back(m.c * w * beta * v * v);
-      nx2.push_back(double(di) * di / r2);
-      // the factor depends on the offset's length only, so one entry per length class
-      if (m.class_weight.size() <= static_cast<size_t>(r2)) m.class_weight.resize(static_cast<size_t>(r2) + 1, 0.0);
-      m.class_weight[static_cast<size_t>(r2)] = beta;
+      bonds.row[i + 1] = kept;
     }
-    bonds.row[i + 1] = static_cast<int64_t>(bonds.neighbor.size());
-  }
+  });
+  for (int i = 0; i < count; ++i) bonds.row[i + 1] += bonds.row[i];
+
+  // pass 2: the kept bonds' values at their places
+  const size_t total = static_cast<size_t>(bonds.row[count]);
+  bonds.neighbor.resize(total);
+  bonds.length_class.resize(total);
+  bonds.grid_spacing = m.dx;
+  k0.resize(total);
+  nx2.resize(total);
+  parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      int64_t at = bonds.row[i];
+      for (int64_t b = nl.row[i]; b < nl.row[i + 1]; ++b) {
+        if (!keep[b]) continue;
+        const int32_t j = nl.col[b];
+        const Offset o = offset_of(static_cast<int>(i), j);
+        bonds.neighbor[at] = j;
+        bonds.length_class[at] = static_cast<uint8_t>(o.r2);
+        k0[at] = m.c * o.w * o.beta * v * v;
+        nx2[at] = double(o.di) * o.di / o.r2;
+        ++at;
+      }
+    }
+  });
+  // the partial volume of each length class, as the last bond of that class in row order has it
+  // (the factor depends on the offset's length only, so one entry per length class)
+  for (int i = count - 1; i >= 0; --i)
+    for (int64_t b = bonds.row[i + 1] - 1; b >= bonds.row[i]; --b) {
+      const size_t length_class = bonds.length_class[b];
+      if (m.class_weight.size() <= length_class) m.class_weight.resize(length_class + 1, -1.0);
+      if (m.class_weight[length_class] < 0.0) m.class_weight[length_class] = offset_of(i, bonds.neighbor[b]).beta;
+    }
+  for (double& weight : m.class_weight) weight = std::max(weight, 0.0);
   // the damage pass weighs bonds by their length class: the initial weights are summed from
   // the same table, so a particle with every bond intact has damage exactly 0
-  for (int i = 0; i < count; ++i) {
-    double sum = 0.0;
-    for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) sum += m.class_weight[bonds.length_class[b]];
-    m.initial_weight[i] = sum + (def.damage == FlexBodyDef::Damage::kIncludeNotch ? notch_weight[i] : 0.0);
-  }
-  bonds.neighbor.shrink_to_fit();
-  bonds.length_class.shrink_to_fit();
+  m.initial_weight.assign(count, 0.0);
+  parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      double sum = 0.0;
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) sum += m.class_weight[bonds.length_class[b]];
+      m.initial_weight[i] = sum + (def.damage == FlexBodyDef::Damage::kIncludeNotch ? notch_weight[i] : 0.0);
+    }
+  });
   bonds.make_length_table();
   bonds.make_offsets();
   bonds.broken.assign(bonds.neighbor.size(), 0);

@@ -1,5 +1,7 @@
 // The flexible part of the model: peridynamic bodies (their particles appended to q after the
 // rigid coordinates), their imposed motions, particle probes and the rigid-flexible joints.
+#include <numeric>
+
 #include "core/error.h"
 #include "pd/bond_force_device.h"
 #include "model/system_model.h"
@@ -17,6 +19,26 @@ void attach_bond_force_device(const FlexBodyDef& def, DevicePrecision precision,
     throw InputError(def.where, std::string("solver.device = \"gpu\": ") + e.what() +
                                     "; run it on the CPU (--device cpu)");
   }
+}
+
+// The particles an attachment holds: those in its region, and with pixels = "blue" only the grip
+// particles of the body's picture (all of them when no region is given).
+std::vector<int> held_particles(const AttachmentDef& def, const SceneDef& scene, const PdBody& flex) {
+  if (def.pixels.empty()) return flex.particles_in(def.region);
+  std::vector<uint8_t> grip;
+  for (const FlexBodyDef& body : scene.flex_bodies)
+    if (body.name == def.flex_body && body.particles) grip = body.particles->grip;
+  std::vector<int> candidates;
+  if (def.region.kind == ShapeDef::Kind::kNone) {
+    candidates.resize(static_cast<size_t>(flex.particle_count()));
+    std::iota(candidates.begin(), candidates.end(), 0);
+  } else {
+    candidates = flex.particles_in(def.region);
+  }
+  std::vector<int> held;
+  for (int p : candidates)
+    if (static_cast<size_t>(p) < grip.size() && grip[p]) held.push_back(p);
+  return held;
 }
 
 }  // namespace
@@ -68,10 +90,11 @@ void build_flexible_part(const SceneDef& scene, SystemModel& m) {
     const int body = m.body_index(def.body, def.where, "attachment '" + def.name + "'");
     const PdBody& flex = *m.flex_bodies[f];
     std::vector<int> coordinates;
-    for (int p : flex.particles_in(def.region)) coordinates.push_back(flex.coordinate_offset() + 2 * p);
+    for (int p : held_particles(def, scene, flex)) coordinates.push_back(flex.coordinate_offset() + 2 * p);
     if (coordinates.empty()) {
-      throw InputError(def.where, "attachment '" + def.name + "' holds no particle of '" + def.flex_body +
-                                      "'; enlarge its region");
+      throw InputError(def.where, "attachment '" + def.name + "' holds no particle of '" + def.flex_body + "'; " +
+                                      (def.pixels.empty() ? "enlarge its region"
+                                                          : "no " + def.pixels + " pixel of its picture lies in its region"));
     }
     auto joint = make_rigid_flexible_joint(def.name, body, coordinates, m.q0);
     // drawn at the centroid of the attached particles, carried by the body

@@ -30,9 +30,19 @@ AttachmentDef SceneTableReader::read_attachment(const toml::table& table, size_t
     in.fail("flex_body", "flexible body '" + attachment.flex_body + "' is not declared (flexible bodies: " +
             (names.empty() ? std::string("none") : join(names)) + ")");
   }
+  // the particles a picture marks blue, within the region when one is given
+  if (in.has("pixels")) attachment.pixels = in.choice("pixels", {"blue"}, "blue");
+  if (!attachment.pixels.empty()) {
+    const FlexBodyDef* flex = nullptr;
+    for (const FlexBodyDef& f : scene_.flex_bodies)
+      if (f.name == attachment.flex_body) flex = &f;
+    if (flex == nullptr || !flex->particles || flex->particles->grip.empty())
+      in.fail("pixels", "flexible body '" + attachment.flex_body +
+                            "' is not read from a picture (shape type \"image\"), so no pixel of it is blue");
+  }
   const toml::node* region = in.node("region");
-  if (region == nullptr) in.fail_missing("region");
-  attachment.region = read_shape(context_, *region, in.key_path("region"), kRegionShapeKinds);
+  if (region == nullptr && attachment.pixels.empty()) in.fail_missing("region");
+  if (region != nullptr) attachment.region = read_shape(context_, *region, in.key_path("region"), kRegionShapeKinds);
   in.finish();
   return attachment;
 }

@@ -19,7 +19,7 @@ namespace {
 }
 
 // What a grid cell stands for.
-enum class PixelKind { kVoid, kMaterial, kNoFail };
+enum class PixelKind { kVoid, kMaterial, kNoFail, kGrip };
 
 // Relative luminance of a pixel; a transparent pixel counts as white (no material).
 double luminance(const unsigned char* rgba) {
@@ -29,6 +29,8 @@ double luminance(const unsigned char* rgba) {
 
 // A clear red pixel: the no-fail colour.
 bool is_red(const unsigned char* rgba) { return rgba[3] >= 128 && rgba[0] >= 150 && rgba[1] < 100 && rgba[2] < 100; }
+// A clear blue pixel: the grip colour (an [[attachment]] with pixels = "blue" holds these).
+bool is_blue(const unsigned char* rgba) { return rgba[3] >= 128 && rgba[2] >= 150 && rgba[0] < 100 && rgba[1] < 100; }
 
 }  // namespace
 
@@ -56,7 +58,7 @@ ParticleCloud read_image_shape(const std::string& path, const ImageShapeOptions&
   // the picture at each cell centre of the box, visited row by row from the bottom: the
   // luminance interpolated between the four nearest pixel centres (bilinear), so that a cell
   // centre on a pixel boundary weighs both sides alike and a symmetric drawing gives a symmetric
-  // body; red (no-fail) where the pixel under the centre is red
+  // body; red (no-fail) or blue (grip) where the pixel under the centre is
   const auto pixel = [&](long u, long v) {
     u = std::clamp(u, 0L, static_cast<long>(w) - 1);
     v = std::clamp(v, 0L, static_cast<long>(h) - 1);
@@ -69,8 +71,8 @@ ParticleCloud read_image_shape(const std::string& path, const ImageShapeOptions&
     const double lum = (1 - fv) * ((1 - fu) * luminance(pixel(iu, iv)) + fu * luminance(pixel(iu + 1, iv))) +
                        fv * ((1 - fu) * luminance(pixel(iu, iv + 1)) + fu * luminance(pixel(iu + 1, iv + 1)));
     if (!(lum < options.threshold)) return PixelKind::kVoid;
-    return is_red(pixel(static_cast<long>(std::floor(u + 0.5)), static_cast<long>(std::floor(v + 0.5)))) ? PixelKind::kNoFail
-                                                                                                          : PixelKind::kMaterial;
+    const unsigned char* under = pixel(static_cast<long>(std::floor(u + 0.5)), static_cast<long>(std::floor(v + 0.5)));
+    return is_red(under) ? PixelKind::kNoFail : is_blue(under) ? PixelKind::kGrip : PixelKind::kMaterial;
   };
   auto visit = [&](auto&& on_particle) {
     scan_grid(box, {}, frame, {}, [&](long j, long begin, long end) {
@@ -103,6 +105,7 @@ ParticleCloud read_image_shape(const std::string& path, const ImageShapeOptions&
     cloud.y.push_back(p.y());
     cloud.volume.push_back(volume);
     cloud.no_fail.push_back(kind == PixelKind::kNoFail ? 1 : 0);
+    cloud.grip.push_back(kind == PixelKind::kGrip ? 1 : 0);
     cloud.line.push_back(0);
   });
   return cloud;

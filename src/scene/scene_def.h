@@ -214,7 +214,9 @@ struct AttachmentDef {
   std::string name;
   std::string body;               // a rigid (usually virtual) body
   std::string flex_body;
-  ShapeDef region;                // global coordinates at set-up
+  ShapeDef region;                // global coordinates at set-up (kNone with pixels: the whole body)
+  // "blue": only the particles a picture marks blue (a flexible body read from an image); "": all
+  std::string pixels;
   SourceLocation where;
 };
 

@@ -2,9 +2,15 @@
 // constraint blocks that own them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <set>
 #include <string>
 
+#include "core/error.h"
+#include "io/image.h"
 #include "model/system_model.h"
 #include "scene/scene_loader.h"
 
@@ -49,6 +55,98 @@ TEST(SystemModel, RigidSceneHasNoAttachments) {
   const auto model = build_system_model(load_scene(shipped("four_bar")));
   EXPECT_TRUE(model->attachments.empty());
   EXPECT_FALSE(model->constraints.empty());
+}
+
+// A bar drawn black with blue ends, each end held by a virtual body through pixels = "blue"
+// within a box around it (or, for the second grip, every blue pixel right of the middle): each
+// grip holds exactly its end's blue particles. A body not read from a picture is refused.
+TEST(SystemModel, AttachmentsHoldTheBluePixelsOfAPicture) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "periflex_blue_grips";
+  fs::create_directories(dir);
+  RgbaImage image;
+  image.resize(40, 10);  // 40 x 10 mm at 1 mm: columns 0-4 and 35-39 blue
+  for (int y = 0; y < 10; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const bool blue = x < 5 || x >= 35;
+      const uint8_t pixel[4] = {static_cast<uint8_t>(blue ? 20 : 0), static_cast<uint8_t>(blue ? 20 : 0),
+                                static_cast<uint8_t>(blue ? 230 : 0), 255};
+      std::copy(pixel, pixel + 4, image.at(x, y));
+    }
+  write_png((dir / "bar.png").string(), image);
+  const std::string scene_text = R"([scene]
+name = "blue_grips"
+gravity = [0.0, 0.0]
+
+[solver]
+integrator = "verlet"
+dt = 1e-7
+end_time = 1e-6
+
+[[body]]
+name = "left"
+virtual = true
+mass = 0.0
+inertia = 0.0
+position = [-0.0175, 0.0]
+
+[[body]]
+name = "right"
+virtual = true
+mass = 0.0
+inertia = 0.0
+position = [0.0175, 0.0]
+
+[[flex_body]]
+name = "bar"
+shape = { type = "image", file = "bar.png", width = 0.04 }
+grid_spacing = 1e-3
+thickness = 1e-3
+
+[flex_body.material]
+youngs_modulus = 3e9
+density = 1200.0
+fracture_energy = 300.0
+
+[[attachment]]
+name = "left_grip"
+body = "left"
+flex_body = "bar"
+pixels = "blue"
+region = { type = "box", center = [-0.02, 0.0], width = 0.02, height = 0.02 }
+
+[[attachment]]
+name = "right_grip"
+body = "right"
+flex_body = "bar"
+pixels = "blue"
+region = { type = "box", center = [0.02, 0.0], width = 0.02, height = 0.02 }
+)";
+  std::ofstream(dir / "blue.toml") << scene_text;
+  const auto model = build_system_model(load_scene((dir / "blue.toml").string()));
+  ASSERT_EQ(model->attachments.size(), 2u);
+  for (const Attachment& attachment : model->attachments) {
+    EXPECT_EQ(attachment.joint->particle_count(), 5 * 10);  // five blue columns of ten
+    // every held particle lies in its end's blue columns
+    for (int k = 0; k < attachment.joint->particle_count(); ++k) {
+      const double x = model->q0[attachment.joint->particle_coordinates()[k]];
+      EXPECT_GT(std::abs(x), 0.0149) << x;
+    }
+  }
+
+  // pixels = "blue" on a body drawn by shape rather than read from a picture
+  std::string boxed = scene_text;
+  boxed.replace(boxed.find(R"({ type = "image", file = "bar.png", width = 0.04 })"),
+                std::string(R"({ type = "image", file = "bar.png", width = 0.04 })").size(),
+                R"({ type = "box", width = 0.04, height = 0.01 })");
+  std::ofstream(dir / "boxed.toml") << boxed;
+  try {
+    load_scene((dir / "boxed.toml").string());
+    ADD_FAILURE() << "pixels = \"blue\" accepted on a body not read from a picture";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("pixels"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("picture"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 // A picture sampled at the grid spacing: dark pixels become the particles a box of the same
-// size would have there, red ones particles that never break, and pictures that cannot give a
+// size would have there, red ones particles that never break, blue ones grip particles, and pictures that cannot give a
 // body are refused naming the file.
 #include <gtest/gtest.h>
 
@@ -28,7 +28,8 @@ std::string picture(const std::string& name, int w, int h, Paint paint) {
   return path.string();
 }
 
-constexpr std::array<uint8_t, 4> kBlack = {0, 0, 0, 255}, kWhite = {255, 255, 255, 255}, kRed = {230, 20, 20, 255};
+constexpr std::array<uint8_t, 4> kBlack = {0, 0, 0, 255}, kWhite = {255, 255, 255, 255}, kRed = {230, 20, 20, 255},
+                                  kBlue = {20, 20, 230, 255};
 
 ImageShapeOptions options(double width, double dx) {
   ImageShapeOptions o;
@@ -80,6 +81,21 @@ TEST(ImageShape, RedPixelsAreMaterialThatNeverBreaks) {
     EXPECT_EQ(cloud.no_fail[k] != 0, cloud.x[k] < -0.003) << cloud.x[k];
   }
   EXPECT_EQ(flagged, 20);
+}
+
+// Blue pixels are material an attachment may hold (pixels = "blue"); they break like any other.
+TEST(ImageShape, BluePixelsAreGripMaterial) {
+  const std::string path = picture("blue", 10, 10, [](int x, int) { return x >= 7 ? kBlue : x < 2 ? kRed : kBlack; });
+  const ParticleCloud cloud = read_image_shape(path, options(0.01, 1e-3));
+  ASSERT_EQ(cloud.size(), 100);
+  ASSERT_EQ(cloud.grip.size(), 100u);
+  long grip = 0;
+  for (long k = 0; k < cloud.size(); ++k) {
+    grip += cloud.grip[k];
+    EXPECT_EQ(cloud.grip[k] != 0, cloud.x[k] > 0.002) << cloud.x[k];
+    EXPECT_FALSE(cloud.grip[k] && cloud.no_fail[k]);
+  }
+  EXPECT_EQ(grip, 30);
 }
 
 TEST(ImageShape, ThresholdDecidesGrey) {

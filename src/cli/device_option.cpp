@@ -16,6 +16,13 @@ namespace periflex {
 
 namespace {
 
+// The first flexible body whose law runs only on the CPU; null when the GPU runs them all.
+const FlexBodyDef* cpu_only_body(const SceneDef& scene) {
+  for (const FlexBodyDef& def : scene.flex_bodies)
+    if (def.material.model != PdMaterialDef::Model::kBondBased) return &def;
+  return nullptr;
+}
+
 // "1.49 MB", "3.2e+03 MB": memory as the message reads it
 std::string megabytes(double bytes) { return format_number(std::round(bytes / 1e4) / 1e2) + " MB"; }
 
@@ -36,12 +43,10 @@ std::string apply_device_option(const std::string& device, SceneDef& scene) {
   const SourceLocation where = !device.empty() ? flag_location("--device") : scene.locate("solver.device");
   const std::string leave_out = !device.empty() ? "leave out --device gpu" : "set solver.device = \"cpu\"";
   // the laws first: they need no context to be refused
-  for (const FlexBodyDef& def : scene.flex_bodies) {
-    if (def.material.model == PdMaterialDef::Model::kBondBased) continue;
-    throw InputError(where, "flexible body '" + def.name +
+  if (const FlexBodyDef* def = cpu_only_body(scene))
+    throw InputError(where, "flexible body '" + def->name +
                                 "' has a law that runs only on the CPU; only material.model = \"bond_based\" runs on the "
                                 "GPU (" + leave_out + ")");
-  }
   // then the context and the precision's program: made here, before the model, and kept for the
   // bodies' devices
   const DevicePrecision precision = device_precision(scene.solver.precision);
@@ -66,9 +71,8 @@ std::string apply_device_option(const std::string& device, SceneDef& scene) {
 std::string device_report(const SceneDef& scene) {
   const std::string precision = scene.solver.precision;
   std::string report = scene.solver.device + " (solver.device); the GPU path (" + precision + "): ";
-  for (const FlexBodyDef& def : scene.flex_bodies)
-    if (def.material.model != PdMaterialDef::Model::kBondBased)
-      return report + "not for this scene: flexible body '" + def.name + "' has a law that runs only on the CPU";
+  if (const FlexBodyDef* def = cpu_only_body(scene))
+    return report + "not for this scene: flexible body '" + def->name + "' has a law that runs only on the CPU";
   try {
     return report + "available, " + make_bond_force_device(device_precision(precision))->description();
   } catch (const std::exception& e) {

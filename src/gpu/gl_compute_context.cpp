@@ -21,7 +21,7 @@ EglContext make_compute_context() {
 }  // namespace
 
 GlComputeContext::GlComputeContext(const std::string& resource_root)
-    : egl_(make_compute_context()), resource_root_(resource_root), description_(egl_.description()) {
+    : egl_(make_compute_context()), resource_root_(resource_root) {
   // current on no thread between passes: each pass takes it on the thread it runs on
   egl_.release();
 }

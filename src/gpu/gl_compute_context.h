@@ -26,13 +26,12 @@ class GlComputeContext {
   // driver without fp64 in its GLSL) or the file is missing.
   unsigned bond_force_program(DevicePrecision precision);
   // "GL: 4.5 (Core Profile) Mesa ...; renderer: llvmpipe ..."
-  const std::string& description() const { return description_; }
+  const std::string& description() const { return egl_.description(); }
 
  private:
   EglContext egl_;
   std::string resource_root_;
   unsigned programs_[2] = {0, 0};  // by precision
-  std::string description_;
 };
 
 }  // namespace periflex

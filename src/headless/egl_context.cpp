@@ -171,15 +171,8 @@ void EglContext::make_current() {
     throw std::runtime_error("EGL: eglMakeCurrent failed: " + egl_error_name(eglGetError()));
 }
 
-EglContext::Scope::Scope(EglContext& context) {
-  const EGLContext mine = static_cast<EGLContext>(context.context_);
-  context_ = eglGetCurrentContext();
-  if (context_ == mine) return;
-  display_ = eglGetCurrentDisplay();
-  draw_ = eglGetCurrentSurface(EGL_DRAW);
-  read_ = eglGetCurrentSurface(EGL_READ);
-  context.make_current();
-  switched_ = true;
+EglContext::Scope::Scope(EglContext& context) : Scope(context, std::nothrow) {
+  if (!current_) throw std::runtime_error("EGL: eglMakeCurrent failed: " + egl_error_name(error_));
 }
 
 EglContext::Scope::Scope(EglContext& context, std::nothrow_t) {
@@ -191,6 +184,7 @@ EglContext::Scope::Scope(EglContext& context, std::nothrow_t) {
   read_ = eglGetCurrentSurface(EGL_READ);
   switched_ = eglMakeCurrent(static_cast<EGLDisplay>(context.display_), EGL_NO_SURFACE, EGL_NO_SURFACE, mine);
   current_ = switched_;
+  if (!switched_) error_ = eglGetError();
 }
 
 EglContext::Scope::~Scope() {

@@ -43,6 +43,7 @@ class EglContext {
     void* context_ = nullptr;
     bool switched_ = false;
     bool current_ = true;
+    int error_ = 0;  // EGL's error when it could not be made current
   };
 
   // "platform: surfaceless; GL: 4.5 (Core Profile) Mesa ...; renderer: llvmpipe ..."

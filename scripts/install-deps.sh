@@ -8,7 +8,7 @@ packages=(
   build-essential cmake ninja-build pkg-config file
   libeigen3-dev libtomlplusplus-dev libcli11-dev nlohmann-json3-dev libstb-dev gnuplot-nox libdeflate-dev
   libsuitesparse-dev libopenblas0-serial
-  libgtest-dev libgmock-dev libbenchmark-dev libboost-dev
+  libgtest-dev libgmock-dev libbenchmark-dev libboost-dev libpolyclipping-dev
   pybind11-dev python3-dev python3-numpy python3-pytest
   python3-matplotlib python3-pil jupyter-nbconvert python3-ipykernel python3-nbformat
 )

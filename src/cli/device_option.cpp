@@ -5,6 +5,7 @@
 #include "cli/scene_setup.h"
 #include "core/error.h"
 #include "core/resources.h"
+#include "scene/cloud_lattice.h"
 #include "scene/scene_budget.h"
 #include "scene/toml_reader.h"
 #include "pd/bond_force_device.h"
@@ -16,10 +17,21 @@ namespace periflex {
 
 namespace {
 
-// The first flexible body whose law runs only on the CPU; null when the GPU runs them all.
-const FlexBodyDef* cpu_only_body(const SceneDef& scene) {
-  for (const FlexBodyDef& def : scene.flex_bodies)
-    if (def.material.model != PdMaterialDef::Model::kBondBased) return &def;
+// The first flexible body only the CPU runs, with why ("has a law that runs only on the CPU");
+// null when the GPU runs them all.
+const FlexBodyDef* cpu_only_body(const SceneDef& scene, std::string& why) {
+  for (const FlexBodyDef& def : scene.flex_bodies) {
+    if (def.material.model != PdMaterialDef::Model::kBondBased) {
+      why = "has a law that runs only on the CPU; only material.model = \"bond_based\" runs on the GPU";
+      return &def;
+    }
+    // the GPU's bonds read their lengths from the grid's length classes
+    if (def.jitter > 0.0 || (def.particles && !place_on_lattice(*def.particles, def.grid_spacing, def.thickness,
+                                                                 def.particles->source).on_grid)) {
+      why = "has particles off the grid (jitter or a point file's layout), which only the CPU runs";
+      return &def;
+    }
+  }
   return nullptr;
 }
 
@@ -43,10 +55,9 @@ std::string apply_device_option(const std::string& device, SceneDef& scene) {
   const SourceLocation where = !device.empty() ? flag_location("--device") : scene.locate("solver.device");
   const std::string leave_out = !device.empty() ? "leave out --device gpu" : "set solver.device = \"cpu\"";
   // the laws first: they need no context to be refused
-  if (const FlexBodyDef* def = cpu_only_body(scene))
-    throw InputError(where, "flexible body '" + def->name +
-                                "' has a law that runs only on the CPU; only material.model = \"bond_based\" runs on the "
-                                "GPU (" + leave_out + ")");
+  std::string why;
+  if (const FlexBodyDef* def = cpu_only_body(scene, why))
+    throw InputError(where, "flexible body '" + def->name + "' " + why + " (" + leave_out + ")");
   // then the context and the precision's program: made here, before the model, and kept for the
   // bodies' devices
   const DevicePrecision precision = device_precision(scene.solver.precision);
@@ -71,8 +82,9 @@ std::string apply_device_option(const std::string& device, SceneDef& scene) {
 std::string device_report(const SceneDef& scene) {
   const std::string precision = scene.solver.precision;
   std::string report = scene.solver.device + " (solver.device); the GPU path (" + precision + "): ";
-  if (const FlexBodyDef* def = cpu_only_body(scene))
-    return report + "not for this scene: flexible body '" + def->name + "' has a law that runs only on the CPU";
+  std::string why;
+  if (const FlexBodyDef* def = cpu_only_body(scene, why))
+    return report + "not for this scene: flexible body '" + def->name + "' " + why;
   try {
     return report + "available, " + make_bond_force_device(device_precision(precision))->description();
   } catch (const std::exception& e) {

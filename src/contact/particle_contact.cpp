@@ -30,6 +30,7 @@ ParticleContact::ParticleContact(const ContactDef& def, const std::vector<const 
       local_.push_back(i);
       mass_.push_back(body.masses()[i]);
     }
+    off_grid_.push_back(body.bonds().own_lengths() ? 1 : 0);
     spacing += body.grid_spacing() / static_cast<double>(bodies_.size());
     inverse_stiffness += 1.0 / default_contact_stiffness(body) / static_cast<double>(bodies_.size());
     const double step = body.critical_time_step();
@@ -38,6 +39,7 @@ ParticleContact::ParticleContact(const ContactDef& def, const std::vector<const 
   // one law for every pair: the declared stiffness, else the harmonic mean of the bodies' defaults
   stiffness_ = def.stiffness > 0.0 ? def.stiffness : 1.0 / inverse_stiffness;
   distance_ = def.distance_ratio * spacing;
+  distance_ratio_ = def.distance_ratio;
   skin_ = def.skin_ratio * spacing;
   zeta_ = damping_ratio(def.restitution);
   lightest_ = mass_.empty() ? 0.0 : *std::min_element(mass_.begin(), mass_.end());
@@ -74,6 +76,13 @@ int64_t ParticleContact::bond_between(int a, int b) const {
     if (bonds.neighbor[k] == j) return k;
   }
   return -1;
+}
+
+double ParticleContact::pair_distance(int a, int b, double d) const {
+  if (!off_grid_[body_of_[a]] || body_of_[a] != body_of_[b]) return d;
+  const std::vector<double>& x = bodies_[body_of_[a]]->reference_positions();
+  const int i = local_[a], j = local_[b];
+  return std::min(d, distance_ratio_ * std::hypot(x[2 * j] - x[2 * i], x[2 * j + 1] - x[2 * i + 1]));
 }
 
 void ParticleContact::find_bonds() const {
@@ -136,8 +145,9 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
         const int b = candidates_.col[e], xb = coordinate_[b];
         const double dx = q[xb] - q[xa], dy = q[xb + 1] - q[xa + 1];
         const double r2 = dx * dx + dy * dy;
-        if (r2 >= d * d || r2 == 0.0) continue;
-        const double r = std::sqrt(r2), overlap = d - r;
+        const double reach = pair_distance(a, b, d);
+        if (r2 >= reach * reach || r2 == 0.0) continue;
+        const double r = std::sqrt(r2), overlap = reach - r;
         // out of b towards a; the velocity of a relative to b
         const Vec2 normal(-dx / r, -dy / r);
         Vec2 v_rel = Vec2::Zero();

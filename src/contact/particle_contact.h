@@ -60,6 +60,11 @@ class ParticleContact final : public ContactElement {
   int64_t bond_between(int a, int b) const;
   // candidate_bond_ for the candidate list.
   void find_bonds() const;
+  // The contact distance of particles a and b: d, except within one body off the grid, where two
+  // particles may start closer than d: at most distance_ratio times their reference distance
+  // there (Littlewood's short-range forces), so neither a body at rest nor a bond just broken
+  // pushes its particles apart. On the grid no bonded pair starts closer than one spacing.
+  double pair_distance(int a, int b, double d) const;
   // One pass at q (and qd when given): forces into g when given, each pair's contact into
   // points when given (then on one thread), and the sums over pairs.
   Sums sweep(const Eigen::VectorXd& q, const Eigen::VectorXd* qd, Eigen::VectorXd* g,
@@ -69,7 +74,8 @@ class ParticleContact final : public ContactElement {
   // particles of all listed bodies, numbered body after body
   std::vector<int> coordinate_, body_of_, local_;
   std::vector<double> mass_;
-  double distance_ = 0.0, skin_ = 0.0, zeta_ = 0.0;
+  std::vector<uint8_t> off_grid_;  // per body: 1 when its particles lie off the grid
+  double distance_ = 0.0, skin_ = 0.0, zeta_ = 0.0, distance_ratio_ = 0.0;
   double lightest_ = 0.0;
 
   // the Verlet list and the state it was built at

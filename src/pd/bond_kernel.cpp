@@ -33,7 +33,7 @@ void elastic_rows(int begin, int end, const Rows& r, const double* __restrict po
       const int32_t j = r.nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
       const double len = std::sqrt(dx * dx + dy * dy);
-      const double l0 = r.l0[r.cls[b]], k = r.k[b];
+      const double l0 = ref_inv_length(r, b), k = r.k[b];
       const double f = k * (l0 - 1.0 / len);
       fx += f * dx;
       fy += f * dy;
@@ -67,7 +67,7 @@ void damped_rows(int begin, int end, const Rows& r, const double* __restrict pos
       const double dvx = vel[2 * j] - vxi, dvy = vel[2 * j + 1] - vyi;
       const double len = std::sqrt(dx * dx + dy * dy);
       const double inv_len = 1.0 / len;
-      const double l0 = r.l0[r.cls[b]], k = r.k[b];
+      const double l0 = ref_inv_length(r, b), k = r.k[b];
       const double rate = (dx * dvx + dy * dvy) * inv_len * l0;
       const double f = k * ((l0 - inv_len) + eta_over_e * rate * inv_len);
       fx += f * dx;
@@ -96,7 +96,7 @@ void row_max_stretch(int begin, int end, const Rows& r, const double* __restrict
     for (int64_t b = r.row[i]; b < r.row[i + 1]; ++b) {
       const int32_t j = r.nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
-      const double s = std::sqrt(dx * dx + dy * dy) * r.l0[r.cls[b]] - 1.0;
+      const double s = std::sqrt(dx * dx + dy * dy) * ref_inv_length(r, b) - 1.0;
       most = std::max(most, r.k[b] > 0.0f ? s : -1.0);
     }
     out[i] = most;
@@ -123,6 +123,10 @@ Isa isa() {
 #endif
 }
 
+// The row loops for these bonds: the AVX-512 ones read the class table from registers, so a body
+// off the grid (its own length per bond) takes the AVX2 ones at most.
+Isa isa(const BondStore& bonds) { return bonds.own_lengths() ? std::min(isa(), Isa::kAvx2) : isa(); }
+
 // the stretch of bond b of particle i, computed the same way for both of its copies
 inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t b) {
   const int32_t j = bonds.neighbor[b];
@@ -133,7 +137,7 @@ inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t 
 // Largest stretch of each row into out.
 void row_maxima(const BondStore& bonds, const double* pos, double* out) {
   const Rows r = rows_of(bonds);
-  const Isa which = isa();
+  const Isa which = isa(bonds);
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
     if (which == Isa::kAvx512) return row_max_stretch_avx512(begin, end, r, pos, out);
@@ -169,7 +173,7 @@ void force_rows(int begin, int end, Isa which, const Rows& r, const double* pos,
 void force_loop(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e, double* force,
                 double* row_max, double* pos_copy, const RowCut* cut) {
   const Rows r = rows_of(bonds);
-  const Isa which = isa();
+  const Isa which = isa(bonds);
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
     force_rows(begin, end, which, r, pos, vel, eta_over_e, force, row_max, cut);
@@ -186,7 +190,7 @@ void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, 
     const int32_t j = r.nbr[b];
     const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
     const double len = std::sqrt(dx * dx + dy * dy);
-    const double l0 = r.l0[r.cls[b]], k = r.k[b];
+    const double l0 = ref_inv_length(r, b), k = r.k[b];
     // the exact stretch, as stretch() below: the same bits in both copies of the bond
     if (k > 0.0 && !fixed && !(cut.no_fail && cut.no_fail[j]) && len * l0 - 1.0 > cut.s0) {
       cut.broken[b] = 2;
@@ -263,7 +267,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
   // each pair is visited twice: a quarter of k |xi| s^2 per visit; rows summed in fixed ranges
   // and the ranges in order, so the energy has the same bits on any thread count
   const Rows r = rows_of(bonds);
-  const Isa which = isa();
+  const Isa which = isa(bonds);
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS

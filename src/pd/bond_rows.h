@@ -23,12 +23,17 @@ struct Rows {
   const double* l0;      // 1 / |xi| per length class
   int classes;           // entries of l0
   const float* k;        // stiffness, 0 once broken
+  const double* own;     // 1 / |xi| of each bond of a body off the grid (BondStore::bond_inv_length), or null
 };
+
+// 1 / |xi| of bond b
+inline double ref_inv_length(const Rows& r, int64_t b) { return r.own ? r.own[b] : r.l0[r.cls[b]]; }
 
 inline Rows rows_of(const BondStore& b) {
   return {b.row.data(), b.neighbor.data(), b.neighbor_offset.empty() ? nullptr : b.neighbor_offset.data(),
           b.length_class.data(), b.inv_length_table.data(),
-          static_cast<int>(b.inv_length_table.size()), b.stiffness.data()};
+          static_cast<int>(b.inv_length_table.size()), b.stiffness.data(),
+          b.own_lengths() ? b.bond_inv_length.data() : nullptr};
 }
 
 // Bonds past the critical stretch inside a force loop. A row whose largest intact stretch (as the

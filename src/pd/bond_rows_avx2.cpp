@@ -23,8 +23,9 @@ __attribute__((target("avx2"))) inline __m256d gather(const double* base, __m128
   return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, idx, all, 8);
 }
 
-// 1/|xi| of bonds b .. b+3 from the class table
+// 1/|xi| of bonds b .. b+3 from the class table (or their own, off the grid)
 __attribute__((target("avx2"))) inline __m256d table_lengths(const Rows& r, int64_t b) {
+  if (r.own) return _mm256_loadu_pd(r.own + b);
   int32_t four;
   std::memcpy(&four, r.cls + b, sizeof(four));
   return gather(r.l0, _mm_cvtepu8_epi32(_mm_cvtsi32_si128(four)));
@@ -77,7 +78,7 @@ __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows
       const int32_t j = r.nbr[b];
       const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
       const double len = std::sqrt(dx * dx + dy * dy);
-      const double l0 = r.l0[r.cls[b]], k = r.k[b];
+      const double l0 = ref_inv_length(r, b), k = r.k[b];
       const double f = k * (l0 - 1.0 / len);
       fx += f * dx;
       fy += f * dy;
@@ -133,7 +134,7 @@ __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows&
       const double dvx = vel[2 * j] - vxi, dvy = vel[2 * j + 1] - vyi;
       const double len = std::sqrt(dx * dx + dy * dy);
       const double inv_len = 1.0 / len;
-      const double l0 = r.l0[r.cls[b]], k = r.k[b];
+      const double l0 = ref_inv_length(r, b), k = r.k[b];
       const double rate = (dx * dvx + dy * dvy) * inv_len * l0;
       const double f = k * ((l0 - inv_len) + eta_over_e * rate * inv_len);
       fx += f * dx;

@@ -9,7 +9,9 @@
 // constant, the same for both copies, so forces stay equal and opposite) and the squared grid
 // offset di^2 + dj^2 (1 byte), from which the reference length follows exactly as
 // grid_spacing sqrt(di^2 + dj^2). A reference length itself stays in double precision: rounding it
-// would pre-strain every bond.
+// would pre-strain every bond. A body whose particles are off the grid (a point file of any
+// layout, a jittered body) has no classes: each stored direction keeps its own 1 / |xi|
+// (bond_inv_length, 8 bytes more a direction), the same bits in both copies.
 #pragma once
 
 #include <cmath>
@@ -32,11 +34,16 @@ struct BondStore {
   std::vector<std::pair<int64_t, float>> broken_stiffness;
   double grid_spacing = 1.0;
   std::vector<double> inv_length_table;  // 1 / |xi| per length class (index = di^2 + dj^2)
+  std::vector<double> bond_inv_length;   // 1 / |xi| of each stored direction off the grid; empty on it
 
   int particle_count() const { return row.empty() ? 0 : static_cast<int>(row.size() - 1); }
   int64_t directed_count() const { return static_cast<int64_t>(neighbor.size()); }
+  // true when each stored direction keeps its own reference length (particles off the grid)
+  bool own_lengths() const { return !bond_inv_length.empty(); }
   // 1 / |xi| of stored direction b.
-  double inv_length(int64_t b) const { return inv_length_table[length_class[b]]; }
+  double inv_length(int64_t b) const {
+    return own_lengths() ? bond_inv_length[b] : inv_length_table[length_class[b]];
+  }
   // Fills inv_length_table for every class up to the largest stored one.
   void make_length_table() {
     uint8_t largest = 0;
@@ -62,6 +69,7 @@ struct BondStore {
            neighbor_offset.capacity() * sizeof(int16_t) + length_class.capacity() * sizeof(uint8_t) +
            stiffness.capacity() * sizeof(float) +
            broken.capacity() * sizeof(uint8_t) + inv_length_table.capacity() * sizeof(double) +
+           bond_inv_length.capacity() * sizeof(double) +
            broken_stiffness.capacity() * sizeof(std::pair<int64_t, float>);
   }
 };

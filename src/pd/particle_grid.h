@@ -16,6 +16,9 @@ struct ParticleGrid {
   Vec2 origin = Vec2::Zero();       // position of grid index (0, 0)
   std::vector<double> x, y;         // reference positions
   std::vector<int32_t> ix, iy;      // grid indices: x = origin.x + ix * dx
+  // false: the particles lie off the grid (a point file of any layout, a jittered body): x, y are
+  // what counts, ix, iy only the nearest nodes, and bonds keep their own lengths
+  bool on_grid = true;
   int size() const { return static_cast<int>(x.size()); }
 };
 

@@ -35,19 +35,23 @@ class PartialVolumes {
     size_ = static_cast<int>(std::ceil(ratio + 0.5)) + 1;
     table_.assign(size_ * size_, 0.0);
     for (int a = 0; a < size_; ++a) {
-      for (int b = 0; b < size_; ++b) {
-        const double r2 = double(a) * a + double(b) * b;
-        if (!def.partial_volume_correction)
-          table_[a * size_ + b] = r2 <= ratio * ratio * (1 + 1e-12) ? 1.0 : 0.0;
-        else if (r2 < (ratio + 0.5) * (ratio + 0.5) * (1 - 1e-12))
-          table_[a * size_ + b] = cell_fraction_in_disc(a, b, ratio);
-      }
+      for (int b = 0; b < size_; ++b) table_[a * size_ + b] = fraction(a, b, def.partial_volume_correction, ratio);
     }
   }
   double operator()(int a, int b) const {
     a = std::abs(a);
     b = std::abs(b);
     return a < size_ && b < size_ ? table_[a * size_ + b] : 0.0;
+  }
+  // The factor of a neighbour off the grid at (a, b) spacings, from the same formula as the grid's
+  // table (whose entries it reproduces at whole offsets); |a|, |b| so both directions agree.
+  static double fraction(double a, double b, bool corrected, double ratio) {
+    a = std::abs(a);
+    b = std::abs(b);
+    const double r2 = a * a + b * b;
+    if (!corrected) return r2 <= ratio * ratio * (1 + 1e-12) ? 1.0 : 0.0;
+    if (r2 < (ratio + 0.5) * (ratio + 0.5) * (1 - 1e-12)) return cell_fraction_in_disc(a, b, ratio);
+    return 0.0;
   }
 
  private:
@@ -70,18 +74,31 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
   const NeighborList nl = find_neighbors(m.grid.x, m.grid.y, reach * (1 + 1e-9));
   const int count = m.n();
   const double v = m.volume.front();
-  // a candidate's grid offset, its partial volume and its influence
+  // a candidate's offset (in spacings), its partial volume and its influence: on the grid from
+  // the whole grid offset, off it from the positions (x_j - x_i is exactly -(x_i - x_j), so both
+  // directions of a bond hold the same bits)
   struct Offset {
-    int di, dj;
+    double di, dj;
     double r2, beta, w;
   };
+  const bool on_grid = m.grid.on_grid;
   auto offset_of = [&](int i, int32_t j) {
     Offset o;
-    o.di = m.grid.ix[j] - m.grid.ix[i];
-    o.dj = m.grid.iy[j] - m.grid.iy[i];
-    o.r2 = double(o.di) * o.di + double(o.dj) * o.dj;
-    o.beta = volume_fraction(o.di, o.dj);
-    o.w = influence(def.influence, m.dx * std::sqrt(o.r2), m.delta);
+    if (on_grid) {
+      const int di = m.grid.ix[j] - m.grid.ix[i], dj = m.grid.iy[j] - m.grid.iy[i];
+      o.di = di;
+      o.dj = dj;
+      o.r2 = o.di * o.di + o.dj * o.dj;
+      o.beta = volume_fraction(di, dj);
+      o.w = influence(def.influence, m.dx * std::sqrt(o.r2), m.delta);
+      return o;
+    }
+    const double ex = m.grid.x[j] - m.grid.x[i], ey = m.grid.y[j] - m.grid.y[i];
+    o.di = ex / m.dx;
+    o.dj = ey / m.dx;
+    o.r2 = o.di * o.di + o.dj * o.dj;
+    o.beta = PartialVolumes::fraction(o.di, o.dj, def.partial_volume_correction, def.horizon_ratio);
+    o.w = influence(def.influence, std::sqrt(ex * ex + ey * ey), m.delta);
     return o;
   };
 
@@ -115,7 +132,11 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
   // pass 2: the kept bonds' values at their places
   const size_t total = static_cast<size_t>(bonds.row[count]);
   bonds.neighbor.resize(total);
-  bonds.length_class.resize(total);
+  bonds.length_class.assign(total, 0);
+  if (!on_grid) {
+    bonds.bond_inv_length.resize(total);
+    m.bond_weight.resize(total);
+  }
   bonds.grid_spacing = m.dx;
   k0.resize(total);
   nx2.resize(total);
@@ -127,16 +148,23 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
         const int32_t j = nl.col[b];
         const Offset o = offset_of(static_cast<int>(i), j);
         bonds.neighbor[at] = j;
-        bonds.length_class[at] = static_cast<uint8_t>(o.r2);
+        if (on_grid) {
+          bonds.length_class[at] = static_cast<uint8_t>(o.r2);
+        } else {
+          const double ex = m.grid.x[j] - m.grid.x[i], ey = m.grid.y[j] - m.grid.y[i];
+          bonds.bond_inv_length[at] = 1.0 / std::sqrt(ex * ex + ey * ey);
+          m.bond_weight[at] = o.beta;
+        }
         k0[at] = m.c * o.w * o.beta * v * v;
-        nx2[at] = double(o.di) * o.di / o.r2;
+        nx2[at] = o.di * o.di / o.r2;
         ++at;
       }
     }
   });
   // the partial volume of each length class, as the last bond of that class in row order has it
-  // (the factor depends on the offset's length only, so one entry per length class)
-  for (int i = count - 1; i >= 0; --i)
+  // (the factor depends on the offset's length only, so one entry per length class); off the
+  // grid each bond keeps its own
+  for (int i = on_grid ? count - 1 : -1; i >= 0; --i)
     for (int64_t b = bonds.row[i + 1] - 1; b >= bonds.row[i]; --b) {
       const size_t length_class = bonds.length_class[b];
       if (m.class_weight.size() <= length_class) m.class_weight.resize(length_class + 1, -1.0);
@@ -149,7 +177,7 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
   parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       double sum = 0.0;
-      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) sum += m.class_weight[bonds.length_class[b]];
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) sum += on_grid ? m.class_weight[bonds.length_class[b]] : m.bond_weight[b];
       m.initial_weight[i] = sum + (def.damage == FlexBodyDef::Damage::kIncludeNotch ? notch_weight[i] : 0.0);
     }
   });

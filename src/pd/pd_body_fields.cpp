@@ -14,11 +14,10 @@ void PdBody::damage(std::vector<float>& out) const {
   out.resize(m.n());
   // 1 - intact weight / initial weight, the weight of a bond being its partial-volume factor
   const int n = m.n();
-  const double* weight = m.class_weight.data();
   parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       double intact = 0.0;
-      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += b.broken[k] ? 0.0 : weight[b.length_class[k]];
+      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += b.broken[k] ? 0.0 : m.weight_of(k);
       const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
       out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
     }

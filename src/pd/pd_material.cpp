@@ -60,7 +60,7 @@ double corner_area(double x, double y, double m) {
 
 }  // namespace
 
-double cell_fraction_in_disc(int a, int b, double m) {
+double cell_fraction_in_disc(double a, double b, double m) {
   // the exact area of the unit cell [a - 1/2, a + 1/2] x [b - 1/2, b + 1/2] inside the disc
   const double x0 = a - 0.5, x1 = a + 0.5, y0 = b - 0.5, y1 = b + 0.5;
   const double area = corner_area(x1, y1, m) - corner_area(x0, y1, m) - corner_area(x1, y0, m) + corner_area(x0, y0, m);

@@ -38,7 +38,8 @@ double uniaxial_stress_energy_density(double c, double thickness, double horizon
 
 // Fraction of the square cell of side 1 centred at (a, b) that lies inside the disc of radius
 // m about the origin (grid units): the exact partial volume of a neighbour cut by the horizon.
-double cell_fraction_in_disc(int a, int b, double m);
+// (a, b) need not be whole: a neighbour off the grid has its cell centred where it is.
+double cell_fraction_in_disc(double a, double b, double m);
 
 // The Poisson ratio bond-based PD implies: 1/3 plane stress, 1/4 plane strain.
 double implied_poisson_ratio(bool plane_strain);

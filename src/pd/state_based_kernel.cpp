@@ -18,12 +18,20 @@ namespace periflex {
 
 namespace {
 
+// what the row loops read for 1/|xi|: the class of each bond and the class table, or (a body off
+// the grid) no classes and each bond's own
+inline const uint8_t* cls_of(const BondStore& bonds) { return bonds.own_lengths() ? nullptr : bonds.length_class.data(); }
+inline const double* l0_of(const BondStore& bonds) {
+  return bonds.own_lengths() ? bonds.bond_inv_length.data() : bonds.inv_length_table.data();
+}
+
 // |xi| of bond b
 inline double ref_length(const BondStore& bonds, int64_t b) { return 1.0 / bonds.inv_length(b); }
 
 // Dilatation rows: theta_i = (2 V / m_i) sum w |xi| (|y| - |xi|), and with kTrack the largest
-// stretch over the intact bonds (-1 without any) into most[i].
-template <bool kTrack>
+// stretch over the intact bonds (-1 without any) into most[i]. 1/|xi| of bond b is l0[cls[b]],
+// or with kOwn (a body off the grid, cls null) l0[b].
+template <bool kTrack, bool kOwn>
 inline __attribute__((always_inline)) void dilatation_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
                      const uint8_t* __restrict cls, const double* __restrict l0, const float* __restrict w,
                      const double* __restrict m, double volume, const double* __restrict pos,
@@ -36,7 +44,7 @@ inline __attribute__((always_inline)) void dilatation_rows(int begin, int end, c
       const int32_t j = nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
       const double len = std::sqrt(dx * dx + dy * dy);
-      const double inv0 = l0[cls[b]], wb = w[b];
+      const double inv0 = kOwn ? l0[b] : l0[cls[b]], wb = w[b];
       // w |xi| e = w (|y| - |xi|) |xi| = w |xi|^2 (|y| / |xi| - 1)
       const double s = len * inv0 - 1.0;
       sum += wb * s / (inv0 * inv0);
@@ -47,8 +55,9 @@ inline __attribute__((always_inline)) void dilatation_rows(int begin, int end, c
   }
 }
 
-// Force rows: force_i += V^2 sum w ((a_i + a_j) |xi| + (b_i + b_j) (e + eta/E de/dt)) y / |y|.
-template <bool kDamped>
+// Force rows: force_i += V^2 sum w ((a_i + a_j) |xi| + (b_i + b_j) (e + eta/E de/dt)) y / |y|;
+// 1/|xi| as in dilatation_rows.
+template <bool kDamped, bool kOwn>
 inline __attribute__((always_inline)) void force_rows(int begin, int end, const int64_t* __restrict row, const int32_t* __restrict nbr,
                 const uint8_t* __restrict cls, const double* __restrict l0, const float* __restrict w,
                 const double* __restrict a, const double* __restrict bcoef, double v2, const double* __restrict pos,
@@ -68,7 +77,7 @@ inline __attribute__((always_inline)) void force_rows(int begin, int end, const 
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
       const double len = std::sqrt(dx * dx + dy * dy);
       const double inv_len = 1.0 / len;
-      const double x0 = 1.0 / l0[cls[b]];
+      const double x0 = 1.0 / (kOwn ? l0[b] : l0[cls[b]]);
       double ext = len - x0;
       if constexpr (kDamped) ext += eta_over_e * (dx * (vel[2 * j] - vxi) + dy * (vel[2 * j + 1] - vyi)) * inv_len;
       const double f = double(w[b]) * ((ai + a[j]) * x0 + (bi + bcoef[j]) * ext) * inv_len;
@@ -94,18 +103,26 @@ struct RowLoops {
   target void name##_dilatation(int begin, int end, const int64_t* row, const int32_t* nbr, const uint8_t* cls,     \
                                 const double* l0, const float* w, const double* m, double volume, const double* pos, \
                                 double* theta, double* most) {                                                      \
-    if (most)                                                                                                       \
-      dilatation_rows<true>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                          \
+    if (most && cls)                                                                                                \
+      dilatation_rows<true, false>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                   \
+    else if (cls)                                                                                                   \
+      dilatation_rows<false, false>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                  \
+    else if (most)                                                                                                  \
+      dilatation_rows<true, true>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                    \
     else                                                                                                            \
-      dilatation_rows<false>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                         \
+      dilatation_rows<false, true>(begin, end, row, nbr, cls, l0, w, m, volume, pos, theta, most);                   \
   }                                                                                                                 \
   target void name##_force(int begin, int end, const int64_t* row, const int32_t* nbr, const uint8_t* cls,          \
                            const double* l0, const float* w, const double* a, const double* bcoef, double v2,        \
                            const double* pos, const double* vel, double eta_over_e, double* force) {                \
-    if (vel)                                                                                                        \
-      force_rows<true>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);                \
+    if (vel && cls)                                                                                                 \
+      force_rows<true, false>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);         \
+    else if (cls)                                                                                                   \
+      force_rows<false, false>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);        \
+    else if (vel)                                                                                                   \
+      force_rows<true, true>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);          \
     else                                                                                                            \
-      force_rows<false>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);               \
+      force_rows<false, true>(begin, end, row, nbr, cls, l0, w, a, bcoef, v2, pos, vel, eta_over_e, force);         \
   }
 
 PERIFLEX_LPS_ROW_LOOPS(baseline, )
@@ -135,11 +152,11 @@ bool lps_wide_loops_allowed() { return wide_loops.load(std::memory_order_relaxed
 
 #ifdef PERIFLEX_HAVE_LPS_AVX512
 // true when the AVX-512 row loops may run on this body: the CPU has them, at most 16 length
-// classes, and no kernels narrower than AVX-512 were asked for (tests compare against them)
+// classes (a body off the grid has none), and no kernels narrower than AVX-512 were asked for (tests compare against them)
 bool use_avx512(const BondStore& bonds) {
   static const bool cpu = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
                           __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-  return cpu && lps_wide_loops_allowed() && bonds.inv_length_table.size() <= 16;
+  return cpu && lps_wide_loops_allowed() && !bonds.own_lengths() && bonds.inv_length_table.size() <= 16;
 }
 #endif
 
@@ -205,8 +222,8 @@ void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
 void compute_dilatations(const BondStore& bonds, StateBasedModel& model, const double* pos) {
   const RowLoops& loops = row_loops();
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
-    loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                     bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
+    loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
+                     l0_of(bonds), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
                      pos, model.dilatation.data(), nullptr);
   });
 }
@@ -245,8 +262,8 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
   // pass 1: dilatations (and the row maxima of the stretch), then a_i = (2 kappa - 4 mu) theta_i / m_i
   for_row_blocks(n, [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
-    loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                     bonds.inv_length_table.data(), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
+    loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
+                     l0_of(bonds), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
                      pos, model.dilatation.data(), row_max);
     for (int i = begin; i < end; ++i) {
       const double m = model.weighted_volume[i];
@@ -256,8 +273,8 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
   // pass 2: pair forces, which need a_j of every neighbour, so only after pass 1 has finished
   const double v2 = model.volume * model.volume;
   for_row_blocks(n, [&](int begin, int end) {
-    loops.force(begin, end, bonds.row.data(), bonds.neighbor.data(), bonds.length_class.data(),
-                bonds.inv_length_table.data(), bonds.stiffness.data(), model.bulk_coef.data(), model.shear_coef.data(),
+    loops.force(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
+                l0_of(bonds), bonds.stiffness.data(), model.bulk_coef.data(), model.shear_coef.data(),
                 v2, pos, eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force);
   });
 }

@@ -39,12 +39,14 @@ void StateBasedLaw::set_coefficients(const LawSetup& setup, BondStore& bonds) {
   for (size_t b = 0; b < k0.size(); ++b) weight[b] = k0[b] / (c * v * v);
   lps_.shear_modulus.assign(n, lps_.mu);
   if (setup.def.surface_correction) {
-    // reference unit vectors from the integer grid offsets
+    // reference unit vectors from the integer grid offsets (off the grid: from the positions)
+    const ParticleGrid& grid = setup.grid;
     std::vector<double> nx(k0.size()), ny(k0.size());
     for (int i = 0; i < n; ++i) {
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
         const int32_t j = bonds.neighbor[b];
-        const double di = setup.grid.ix[j] - setup.grid.ix[i], dj = setup.grid.iy[j] - setup.grid.iy[i];
+        const double di = grid.on_grid ? grid.ix[j] - grid.ix[i] : grid.x[j] - grid.x[i];
+        const double dj = grid.on_grid ? grid.iy[j] - grid.iy[i] : grid.y[j] - grid.y[i];
         const double r = std::sqrt(di * di + dj * dj);
         nx[b] = di / r;
         ny[b] = dj / r;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "core/error.h"
 #include "scene/toml_reader.h"
@@ -29,7 +30,7 @@ CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thic
     fail_at(file, 0, "the points span " + format_count(std::ceil(span / dx)) +
                          " grid spacings, more than 2000000000; raise grid_spacing");
 
-  // each point's node, and how far from it the point lies
+  // each point's nearest node, and whether every point lies on it
   const double volume = dx * dx * thickness;
   lattice.ix.resize(n);
   lattice.iy.resize(n);
@@ -37,11 +38,7 @@ CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thic
     const double fx = (cloud.x[k] - lattice.origin.x()) / dx, fy = (cloud.y[k] - lattice.origin.y()) / dx;
     const double rx = std::round(fx), ry = std::round(fy);
     const double off = std::max(std::abs(fx - rx), std::abs(fy - ry));
-    if (!(off <= kLatticeTolerance))
-      fail_at(file, line_of(k), "the point (" + format_number(cloud.x[k]) + ", " + format_number(cloud.y[k]) +
-                                    ") lies " + format_number(off) + " grid spacings off the square grid of spacing " +
-                                    format_number(dx) + " through the lowest point; a flexible body's points must lie "
-                                    "on its grid (check grid_spacing and the file's unit)");
+    if (!(off <= kLatticeTolerance)) lattice.on_grid = false;
     if (!(std::abs(cloud.volume[k] - volume) <= kVolumeTolerance * volume))
       fail_at(file, line_of(k), "volume " + format_number(cloud.volume[k]) + " m^3 differs from grid_spacing^2 x "
                                     "thickness = " + format_number(volume) + " m^3; every particle of a body has that "
@@ -50,20 +47,40 @@ CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thic
     lattice.iy[k] = static_cast<int32_t>(ry);
   }
 
-  // two points on one node would be one particle counted twice
-  std::vector<long> order(n);
-  std::iota(order.begin(), order.end(), 0L);
-  std::sort(order.begin(), order.end(), [&](long a, long b) {
-    return lattice.iy[a] != lattice.iy[b] ? lattice.iy[a] < lattice.iy[b]
-           : lattice.ix[a] != lattice.ix[b] ? lattice.ix[a] < lattice.ix[b] : a < b;
-  });
-  for (long k = 1; k < n; ++k) {
-    const long a = order[k - 1], b = order[k];
-    if (lattice.ix[a] == lattice.ix[b] && lattice.iy[a] == lattice.iy[b])
-      fail_at(file, line_of(b), "the point (" + format_number(cloud.x[b]) + ", " + format_number(cloud.y[b]) +
-                                    ") coincides with the point of line " + std::to_string(line_of(a)) +
-                                    " (the same grid node at spacing " + format_number(dx) + ")");
+  // two points on one node (on the grid), or closer than the tolerance (off it), would be one
+  // particle counted twice: the points sorted by node (nodes are >= 0, below 2^31), each compared
+  // with the earlier points of its own node and, off the grid, of the eight around it
+  const auto node_key = [](int64_t ix, int64_t iy) { return iy * (int64_t{1} << 32) + ix; };
+  std::vector<std::pair<int64_t, long>> by_node(n);
+  for (long k = 0; k < n; ++k) by_node[k] = {node_key(lattice.ix[k], lattice.iy[k]), k};
+  std::sort(by_node.begin(), by_node.end());
+  const double near2 = kLatticeTolerance * dx * kLatticeTolerance * dx;
+  const auto coincide = [&](long a, long b) {
+    if (lattice.on_grid) return true;  // on one node
+    const double ddx = cloud.x[a] - cloud.x[b], ddy = cloud.y[a] - cloud.y[b];
+    return ddx * ddx + ddy * ddy <= near2;
+  };
+  const int reach = lattice.on_grid ? 0 : 1;
+  long worst_b = -1, worst_a = -1;
+  for (long b = 0; b < n && worst_b < 0; ++b) {
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dxn = -reach; dxn <= reach; ++dxn) {
+        const int64_t key = node_key(int64_t{lattice.ix[b]} + dxn, int64_t{lattice.iy[b]} + dy);
+        for (auto it = std::lower_bound(by_node.begin(), by_node.end(), std::make_pair(key, -1L));
+             it != by_node.end() && it->first == key && it->second < b; ++it)
+          if (coincide(it->second, b) && (worst_a < 0 || it->second < worst_a)) {
+            worst_b = b;
+            worst_a = it->second;
+          }
+      }
+    }
   }
+  if (worst_b >= 0)
+    fail_at(file, line_of(worst_b),
+            "the point (" + format_number(cloud.x[worst_b]) + ", " + format_number(cloud.y[worst_b]) +
+                ") coincides with the point of line " + std::to_string(line_of(worst_a)) +
+                (lattice.on_grid ? " (the same grid node at spacing " + format_number(dx) + ")"
+                                 : " (closer than " + format_number(kLatticeTolerance) + " grid spacings)"));
   return lattice;
 }
 

@@ -1,6 +1,8 @@
-// A flexible body's bonds keep their reference length as a whole grid offset (pd/bond_store.h),
-// so the particles of a point file or an image must sit on a square grid of the body's spacing.
-// This finds each point's grid indices and refuses, naming the line, what cannot be placed.
+// Where the points of a point file or an image sit against the square grid of the body's spacing.
+// On it, bonds keep their reference length as a whole grid offset (pd/bond_store.h), as on a
+// filled shape; points off it (a mesher's centroids, a jittered set) make a body whose bonds keep
+// their own lengths. This finds each point's nearest grid node and refuses, naming the line, what
+// cannot be a particle.
 #pragma once
 
 #include <cstdint>
@@ -14,18 +16,21 @@ namespace periflex {
 
 struct CloudLattice {
   Vec2 origin = Vec2::Zero();      // grid index (0, 0): the lowest x and the lowest y of the points
-  std::vector<int32_t> ix, iy;     // x = origin.x + ix dx (to within kLatticeTolerance dx)
+  std::vector<int32_t> ix, iy;     // the nearest node: x = origin.x + ix dx (within kLatticeTolerance dx on the grid)
+  bool on_grid = true;             // every point within kLatticeTolerance dx of its node
 };
 
-// How far (in spacings) a point may lie from its grid node: printed coordinates of a few
-// significant digits still land, a point half way between nodes does not.
+// How far (in spacings) a point may lie from its grid node and still count as on the grid:
+// printed coordinates of a few significant digits still land, a point a thousandth of a
+// spacing away does not. Off the grid, two points closer than this are coincident.
 constexpr double kLatticeTolerance = 1e-6;
 // How far (relative) a point's volume may differ from dx^2 thickness.
 constexpr double kVolumeTolerance = 1e-6;
 
-// The grid indices of every point. Throws InputError naming `file` and the line of the first
-// point off the grid, of two points on one node (coincident points) or of a volume other than
-// dx^2 thickness (the body gives every particle that volume).
+// The nearest grid node of every point, and whether all of them lie on the grid. Throws
+// InputError naming `file` and the line of two coincident points (on the grid: on one node; off
+// it: within kLatticeTolerance dx) or of a volume other than dx^2 thickness (the body gives every
+// particle that volume).
 CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thickness, const std::string& file);
 
 }  // namespace periflex

@@ -53,6 +53,11 @@ FlexBodyDef SceneTableReader::read_flex_body(const toml::table& table, size_t in
     in.fail("horizon_ratio", "must be at most " + format_number(kMaxHorizonRatio) +
                                  " (each particle would have hundreds of thousands of bonds), found " +
                                  format_number(flex.horizon_ratio));
+  flex.jitter = in.number("jitter", flex.jitter, Sign::kNonNegative);
+  if (!(flex.jitter < 0.5))
+    in.fail("jitter", "must be below 0.5 (a particle moved half a spacing could meet its neighbour), found " +
+                          format_number(flex.jitter));
+  flex.jitter_seed = static_cast<uint64_t>(in.integer("jitter_seed", 1, 0));
   // refuse absurd grids before anything is allocated
   // (a first look from the area; the exact count and the whole scene's budget come after loading)
   const double limit = std::max(kMaxParticlesPerFlexBody, scene_.limits.max_particles);

@@ -17,6 +17,7 @@
 //   SceneDef        all of the above
 #pragma once
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -191,6 +192,10 @@ struct FlexBodyDef {
   double grid_spacing = 0.0;      // dx
   double thickness = 1.0;
   double horizon_ratio = 3.0;     // m: delta = m * dx
+  // each particle moved by up to jitter dx in x and in y (0 <= jitter < 0.5), the same moves for
+  // the same jitter_seed: an irregular point set from any shape
+  double jitter = 0.0;
+  uint64_t jitter_seed = 1;
   PdMaterialDef material;
   enum class Influence { kConstant, kConical } influence = Influence::kConstant;
   bool partial_volume_correction = true;

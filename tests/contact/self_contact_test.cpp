@@ -3,6 +3,8 @@
 // pair by pair as soon as they come closer than the contact distance, each pair pushed apart.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "contact/particle_contact.h"
 #include "model/system_model.h"
 #include "scene/scene_loader.h"
@@ -11,8 +13,8 @@ namespace periflex {
 namespace {
 
 // A 10 x 10 mm plate (dx = 1 mm: 10 x 10 particles) with particle contact on itself, and a
-// notch through it along x = 0 when `cracked`.
-std::unique_ptr<SystemModel> plate(bool cracked) {
+// notch through it along x = 0 when `cracked`; its particles jittered by `jitter` spacings.
+std::unique_ptr<SystemModel> plate(bool cracked, double jitter = 0.0) {
   std::string text = R"([scene]
 name = "plate"
 gravity = [0, 0]
@@ -26,6 +28,7 @@ grid_spacing = 0.001
 fracture = false
 )";
   if (cracked) text += "notches = [{ p1 = [0, -0.01], p2 = [0, 0.01] }]\n";
+  if (jitter > 0.0) text += "jitter = " + std::to_string(jitter) + "\n";
   text += R"([flex_body.material]
 youngs_modulus = 1e9
 density = 1000
@@ -72,6 +75,24 @@ TEST(SelfContact, CrackFacesRepelPairByPairOnceCloserThanTheContactDistance) {
     net += g[c];
   }
   EXPECT_NEAR(net, 0.0, 1e-9 * g.cwiseAbs().maxCoeff());
+}
+
+// Off the grid the crack's faces may start closer than the contact distance (0.9 dx): a pair's
+// distance is then at most 0.9 times its reference distance, so the faces at rest feel nothing,
+// and squeezed they repel.
+TEST(SelfContact, JitteredCrackFacesFeelNothingAtRestAndRepelSqueezed) {
+  const auto model = plate(true, 0.4);
+  const Eigen::VectorXd rest = Eigen::VectorXd::Zero(model->coordinate_count);
+  ContactElement& contact = *model->contacts.at(0);
+  // some pair across the notch starts closer than 0.9 dx
+  const Eigen::VectorXd& x = model->q0;  // the plate's particles only
+  double closest = 1.0;
+  for (int i = 0; i < x.size(); i += 2)
+    for (int j = 0; j < x.size(); j += 2)
+      if (x[i] < 0.0 && x[j] > 0.0) closest = std::min(closest, std::hypot(x[j] - x[i], x[j + 1] - x[i + 1]));
+  ASSERT_LT(closest, 0.9e-3);
+  EXPECT_EQ(contact.totals(model->q0, rest).active, 0);
+  EXPECT_GT(contact.totals(squeezed(*model), rest).active, 0);
 }
 
 TEST(SelfContact, BondsCutAfterTheSearchMakeContactPairsWithoutANewSearch) {

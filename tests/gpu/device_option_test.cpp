@@ -70,6 +70,17 @@ TEST(DeviceOption, RefusesALawTheGpuDoesNotRun) {
   EXPECT_NE(r.output.find("bond_based"), std::string::npos) << r.output;
 }
 
+// A body whose particles lie off the grid (its bonds keep their own lengths, which the GPU's
+// length classes cannot hold): refused before anything runs, naming the body and why.
+TEST(DeviceOption, RefusesABodyOffTheGrid) {
+  const fs::path out = fresh_directory("device_off_grid");
+  const ProgramResult r = run_periflex("run " + scene("notched_plate.toml") + " --quiet --device gpu" +
+                                       " --set flex_body.plate.jitter=0.2 --out " + out.string());
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("'plate' has particles off the grid"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out / "series.csv"));
+}
+
 // `periflex run ... --device gpu` with `environment` before it in the shell.
 ProgramResult run_gpu_with(const std::string& environment, const fs::path& out) {
   return run_periflex_with(environment, "run " + scene("notched_plate.toml") + " --quiet --until 1e-5 --device gpu --out " +

@@ -16,7 +16,7 @@
 namespace periflex {
 namespace {
 
-constexpr double kSteelE = 200e9;
+constexpr double kSteelModulus = 200e9;
 
 // A steel strip (E = 200 GPa) of the given size, state-based, elastic.
 FlexBodyDef lps_strip(double width, double height, double dx, double nu, bool plane_strain, bool corrected) {
@@ -28,7 +28,7 @@ FlexBodyDef lps_strip(double width, double height, double dx, double nu, bool pl
   def.horizon_ratio = 3.0;
   def.fracture = false;
   def.surface_correction = corrected;
-  def.material.youngs_modulus = kSteelE;
+  def.material.youngs_modulus = kSteelModulus;
   def.material.density = 7850.0;
   def.material.plane_strain = plane_strain;
   def.material.model = PdMaterialDef::Model::kStateBased;
@@ -83,8 +83,8 @@ TEST(PdStateBasedSurface, StripInTensionHasYoungsModulus) {
   const double width = 0.06, height = 0.02, dx = 1e-3, nu = 0.3;
   for (bool plane_strain : {false, true}) {
     const char* plane = plane_strain ? "plane strain" : "plane stress";
-    const double continuum = plane_strain ? kSteelE / (1 - nu * nu) : kSteelE;
-    const double kappa = lps_bulk_modulus(kSteelE, nu, plane_strain), mu_axes = axis_shear_modulus(nu, plane_strain);
+    const double continuum = plane_strain ? kSteelModulus / (1 - nu * nu) : kSteelModulus;
+    const double kappa = lps_bulk_modulus(kSteelModulus, nu, plane_strain), mu_axes = axis_shear_modulus(nu, plane_strain);
     const double lattice = 4 * kappa * mu_axes / (kappa + mu_axes);
     auto body = PdBody::build(lps_strip(width, height, dx, nu, plane_strain, true), 0);
     const double per_particle = 1e3;

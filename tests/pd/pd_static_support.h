@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -72,6 +73,28 @@ inline Eigen::VectorXd static_tension(PdBody& body, double force_per_particle) {
   }
   fixed[2 * anchor + 1] = 1.0;
   return static_solution(body, f, fixed);
+}
+
+// The hoop strain at the top of a hole of radius a centred at the origin, from the displacements u
+// of its rim particles: (A0, A2, B2) of u_r = A0 + A2 cos 2 phi and u_theta = B2 sin 2 phi fitted by
+// least squares (reference polar angle phi), the form the Kirsch displacements take on the hole's
+// edge, and then (u_r + du_theta / dphi) / a = (A0 - A2 - 2 B2) / a at phi = 90 degrees.
+inline double rim_hoop_strain(const std::vector<double>& x, const std::vector<int>& rim, const Eigen::VectorXd& u,
+                       double a) {
+  Eigen::MatrixXd fit(rim.size(), 2);
+  Eigen::VectorXd ur(rim.size()), ut(rim.size()), s2(rim.size());
+  for (size_t k = 0; k < rim.size(); ++k) {
+    const int i = rim[k];
+    const double r = std::hypot(x[2 * i], x[2 * i + 1]), phi = std::atan2(x[2 * i + 1], x[2 * i]);
+    const double c = x[2 * i] / r, s = x[2 * i + 1] / r;
+    fit.row(k) << 1.0, std::cos(2 * phi);
+    s2[k] = std::sin(2 * phi);
+    ur[k] = c * u[2 * i] + s * u[2 * i + 1];
+    ut[k] = -s * u[2 * i] + c * u[2 * i + 1];
+  }
+  const Eigen::Vector2d radial = fit.colPivHouseholderQr().solve(ur);
+  const double b2 = s2.dot(ut) / s2.squaredNorm();
+  return (radial[0] - radial[1] - 2 * b2) / a;
 }
 
 }  // namespace periflex::test

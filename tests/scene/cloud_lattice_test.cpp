@@ -1,5 +1,6 @@
-// Points of a file placed on the body's grid: the indices follow the positions, and a point off
-// the grid, two points on one node or a wrong volume is refused naming its line.
+// Points of a file placed against the body's grid: the indices follow the positions, points off
+// the grid make a cloud off it (each with its nearest node), and two coincident points or a
+// wrong volume are refused naming the line.
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -39,10 +40,24 @@ TEST(CloudLattice, GridPointsGetTheirIndices) {
   EXPECT_EQ(l.iy, (std::vector<int32_t>{0, 1, 3}));
 }
 
-TEST(CloudLattice, PointOffTheGridNamesItsLine) {
+TEST(CloudLattice, GridPointsAreOnTheGrid) {
+  EXPECT_TRUE(place_on_lattice(cloud({{0, 0}, {1, 0}, {2, 1 + 1e-8}}, 1.0), 1.0, 1.0, "f.csv").on_grid);
+}
+
+TEST(CloudLattice, PointOffTheGridMakesACloudOffItWithTheNearestNodes) {
+  const CloudLattice l = place_on_lattice(cloud({{0, 0}, {1, 0}, {2.4, 1}, {2.6, 1}}, 1.0), 1.0, 1.0, "f.csv");
+  EXPECT_FALSE(l.on_grid);
+  EXPECT_EQ(l.ix, (std::vector<int32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(l.iy, (std::vector<int32_t>{0, 0, 1, 1}));
+}
+
+// Off the grid, points a hundredth of a spacing apart are two particles; closer than the
+// tolerance they are one point given twice, found across nodes (2.4999999 and 2.5 round apart).
+TEST(CloudLattice, OffTheGridOnlyPointsWithinTheToleranceCoincide) {
+  EXPECT_EQ(error_line(cloud({{0, 0}, {1.3, 0}, {1.31, 0}}, 1.0), 1.0, 1.0), -1);
   std::string message;
-  EXPECT_EQ(error_line(cloud({{0, 0}, {1, 0}, {2.4, 1}}, 1.0), 1.0, 1.0, &message), 12);
-  EXPECT_NE(message.find("0.4 grid spacings off"), std::string::npos) << message;
+  EXPECT_EQ(error_line(cloud({{0, 0}, {2.5, 0.2}, {1.3, 0}, {2.4999999, 0.2}}, 1.0), 1.0, 1.0, &message), 13);
+  EXPECT_NE(message.find("coincides with the point of line 11 (closer than"), std::string::npos) << message;
 }
 
 TEST(CloudLattice, CoincidentPointsNameBothLines) {

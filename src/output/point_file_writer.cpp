@@ -19,7 +19,7 @@ void append_number(std::string& out, double value) {
 
 std::string point_file_text(const SceneDef& scene) {
   std::string out = "# periflex points of scene '" + scene.name + "': reference x, y [m], volume [m^3] " +
-                    "(grid_spacing^2 x thickness), block (the flexible body), no_fail (1: bonds never break)\n";
+                    "(grid_spacing^2 x thickness unless a graded file gave its own), block (the flexible body), no_fail (1: bonds never break)\n";
   for (size_t b = 0; b < scene.flex_bodies.size(); ++b) {
     const FlexBodyDef& def = scene.flex_bodies[b];
     out += "# block " + std::to_string(b + 1) + ": flexible body '" + def.name + "', grid_spacing ";
@@ -42,7 +42,7 @@ std::string point_file_text(const SceneDef& scene) {
       out += ',';
       append_number(out, grid.y[i]);
       out += ',';
-      append_number(out, volume);
+      append_number(out, grid.volume.empty() ? volume : grid.volume[i]);
       out += tail;
       out += no_fail[i] ? "1\n" : "0\n";
     }

@@ -54,8 +54,9 @@ void set_bond_stiffness(const LawSetup& setup, BondStore& bonds) {
           wx += 0.25 * k0[b] / bonds.inv_length(b) * sx * sx;
           wy += 0.25 * k0[b] / bonds.inv_length(b) * sy * sy;
         }
-        if (wx > 0.0) gx[i] = w_cont * v / wx;
-        if (wy > 0.0) gy[i] = w_cont * v / wy;
+        const double vi = setup.volumes ? setup.volumes[i] : v;
+        if (wx > 0.0) gx[i] = w_cont * vi / wx;
+        if (wy > 0.0) gy[i] = w_cont * vi / wy;
       }
     });
   }

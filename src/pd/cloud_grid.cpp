@@ -15,6 +15,7 @@ ParticleGrid grid_from_cloud(const ParticleCloud& cloud, double dx, double thick
   grid.ix = lattice.ix;
   grid.iy = lattice.iy;
   grid.on_grid = lattice.on_grid;
+  if (!lattice.cell_volumes) grid.volume = cloud.volume;
   return grid;
 }
 

@@ -11,8 +11,9 @@
 
 namespace periflex {
 
-// Throws InputError (naming the file's line) for two coincident points or a volume other than
-// dx^2 thickness. Points off the grid of spacing dx make a grid with on_grid false.
+// Throws InputError (naming the file's line) for two coincident points or a volume far from
+// dx^2 thickness (scene/cloud_lattice.h). Points off the grid of spacing dx make a grid with
+// on_grid false; volumes other than dx^2 thickness are kept per particle.
 ParticleGrid grid_from_cloud(const ParticleCloud& cloud, double dx, double thickness);
 
 // Moves each particle by up to jitter spacings in x and in y (uniform, from the seed and the

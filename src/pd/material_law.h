@@ -32,7 +32,8 @@ struct LawSetup {
   const ParticleGrid& grid;
   double micromodulus = 0.0;     // c [N/m^6]
   double horizon = 0.0;          // delta [m]
-  double volume = 0.0;           // V of every particle [m^3]
+  double volume = 0.0;           // V of every particle [m^3] (the grid cell's)
+  const double* volumes = nullptr;  // V_i of each particle when they differ (a graded point file); null: all V
   const std::vector<double>& k0;   // c w beta V^2 per stored direction (before any correction)
   const std::vector<double>& nx2;  // squared x-component of each stored direction's unit vector
   const uint8_t* no_fail = nullptr;  // 1: bonds at this particle never break; null when none is

@@ -19,6 +19,9 @@ struct ParticleGrid {
   // false: the particles lie off the grid (a point file of any layout, a jittered body): x, y are
   // what counts, ix, iy only the nearest nodes, and bonds keep their own lengths
   bool on_grid = true;
+  // each particle's volume [m^3] when a point file gives volumes other than dx^2 thickness (a
+  // graded mesh); empty: every particle has dx^2 thickness
+  std::vector<double> volume;
   int size() const { return static_cast<int>(x.size()); }
 };
 

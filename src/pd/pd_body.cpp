@@ -104,9 +104,11 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
   for (const AppliedLoad& load : m.loads) {
     const double fx = load.fx ? load.scale * (*load.fx)(t) : 0.0;
     const double fy = load.fy ? load.scale * (*load.fy)(t) : 0.0;
-    for (int i : load.particles) {
-      force[2 * i] += fx;
-      force[2 * i + 1] += fy;
+    for (size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      const double w = load.weights.empty() ? 1.0 : load.weights[k];
+      force[2 * i] += w * fx;
+      force[2 * i + 1] += w * fy;
     }
   }
 }
@@ -175,7 +177,11 @@ double PdBody::external_power(const Eigen::VectorXd& q, const Eigen::VectorXd& q
   for (const AppliedLoad& load : m.loads) {
     const double fx = load.fx ? load.scale * (*load.fx)(t) : 0.0;
     const double fy = load.fy ? load.scale * (*load.fy)(t) : 0.0;
-    for (int i : load.particles) power += fx * vel[2 * i] + fy * vel[2 * i + 1];
+    for (size_t k = 0; k < load.particles.size(); ++k) {
+      const int i = load.particles[k];
+      const double w = load.weights.empty() ? 1.0 : load.weights[k];
+      power += w * (fx * vel[2 * i] + fy * vel[2 * i + 1]);
+    }
   }
   return power;
 }

@@ -82,6 +82,7 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
     double r2, beta, w;
   };
   const bool on_grid = m.grid.on_grid;
+  const bool graded = !m.grid.volume.empty();  // particles of unequal volumes
   auto offset_of = [&](int i, int32_t j) {
     Offset o;
     if (on_grid) {
@@ -155,7 +156,8 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
           bonds.bond_inv_length[at] = 1.0 / std::sqrt(ex * ex + ey * ey);
           m.bond_weight[at] = o.beta;
         }
-        k0[at] = m.c * o.w * o.beta * v * v;
+        // V_i V_j as one product: the same bits in both directions
+        k0[at] = graded ? m.c * o.w * o.beta * (m.volume[i] * m.volume[j]) : m.c * o.w * o.beta * v * v;
         nx2[at] = o.di * o.di / o.r2;
         ++at;
       }
@@ -224,12 +226,17 @@ void collect_loads(PdBody::Impl& m) {
           rows.insert(m.grid.iy[i]);
         }
         const double layers = static_cast<double>(std::min(cols.size(), rows.size()));
-        m.loads.push_back({inside, m.def.thickness * m.dx / layers, load.fx, load.fy});
+        m.loads.push_back({inside, m.def.thickness * m.dx / layers, load.fx, load.fy, {}});
         break;
       }
-      case RegionLoadDef::Kind::kBodyForce:
-        m.loads.push_back({inside, m.volume.front(), load.fx, load.fy});
+      case RegionLoadDef::Kind::kBodyForce: {
+        // force density times each particle's volume (unequal on a graded point file)
+        AppliedLoad applied{inside, m.volume.front(), load.fx, load.fy, {}};
+        if (!m.grid.volume.empty())
+          for (int i : inside) applied.weights.push_back(m.volume[i] / m.volume.front());
+        m.loads.push_back(std::move(applied));
         break;
+      }
     }
   }
 }
@@ -295,8 +302,18 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
     m->reference[2 * i] = m->grid.x[i];
     m->reference[2 * i + 1] = m->grid.y[i];
   }
-  m->volume.assign(n, v);
-  m->mass.assign(n, mat.density * v);
+  // every particle the grid cell's volume, or (a graded point file) its own
+  if (m->grid.volume.empty()) {
+    m->volume.assign(n, v);
+    m->mass.assign(n, mat.density * v);
+  } else {
+    require(def.material.model != PdMaterialDef::Model::kStateBased, "material.model",
+            "the state-based law needs every particle's volume to be grid_spacing^2 x thickness; the points of " +
+                (def.particles ? def.particles->source : std::string("the body")) + " have volumes of their own");
+    m->volume = m->grid.volume;
+    m->mass.resize(n);
+    for (int i = 0; i < n; ++i) m->mass[i] = mat.density * m->volume[i];
+  }
 
   // material constants: the micromodulus every law scales its bonds by, and the law itself
   m->c = periflex::micromodulus(mat.youngs_modulus, def.thickness, m->delta, mat.plane_strain);
@@ -308,7 +325,9 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   m->no_fail = body_no_fail(def, m->grid);
   std::vector<double> k0, nx2;
   make_bonds(*m, k0, nx2);
-  m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, k0, nx2, m->no_fail_flags()}, m->bonds);
+  m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, m->grid.volume.empty() ? nullptr : m->volume.data(),
+                                    k0, nx2, m->no_fail_flags()},
+                           m->bonds);
   collect_loads(*m);
 
   m->bond_damping = def.bond_damping;

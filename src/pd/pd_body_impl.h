@@ -25,6 +25,7 @@ struct AppliedLoad {
   std::vector<int> particles;
   double scale = 0.0;
   std::optional<TimeFunction> fx, fy;
+  std::vector<double> weights;  // per listed particle, times scale (a body force on unequal volumes); empty: 1
 };
 
 // True when the bond [a, b] crosses the notch [c, d] (pd_body_build.cpp; the knife makes the same test).

@@ -39,10 +39,13 @@ CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thic
     const double rx = std::round(fx), ry = std::round(fy);
     const double off = std::max(std::abs(fx - rx), std::abs(fy - ry));
     if (!(off <= kLatticeTolerance)) lattice.on_grid = false;
-    if (!(std::abs(cloud.volume[k] - volume) <= kVolumeTolerance * volume))
-      fail_at(file, line_of(k), "volume " + format_number(cloud.volume[k]) + " m^3 differs from grid_spacing^2 x "
-                                    "thickness = " + format_number(volume) + " m^3; every particle of a body has that "
-                                    "volume (check grid_spacing, thickness and the file's unit)");
+    if (!(std::abs(cloud.volume[k] - volume) <= kVolumeTolerance * volume)) lattice.cell_volumes = false;
+    if (!(cloud.volume[k] <= kVolumeRange * volume && cloud.volume[k] >= volume / kVolumeRange))
+      fail_at(file, line_of(k), "volume " + format_number(cloud.volume[k]) + " m^3 is " +
+                                    format_number(cloud.volume[k] / volume) + " times grid_spacing^2 x thickness = " +
+                                    format_number(volume) + " m^3; a particle's volume must lie within " +
+                                    format_number(1.0 / kVolumeRange) + " and " + format_number(kVolumeRange) +
+                                    " times it (check grid_spacing, thickness and the file's unit)");
     lattice.ix[k] = static_cast<int32_t>(rx);
     lattice.iy[k] = static_cast<int32_t>(ry);
   }

@@ -18,19 +18,24 @@ struct CloudLattice {
   Vec2 origin = Vec2::Zero();      // grid index (0, 0): the lowest x and the lowest y of the points
   std::vector<int32_t> ix, iy;     // the nearest node: x = origin.x + ix dx (within kLatticeTolerance dx on the grid)
   bool on_grid = true;             // every point within kLatticeTolerance dx of its node
+  bool cell_volumes = true;        // every volume within kVolumeTolerance of dx^2 thickness
 };
 
 // How far (in spacings) a point may lie from its grid node and still count as on the grid:
 // printed coordinates of a few significant digits still land, a point a thousandth of a
 // spacing away does not. Off the grid, two points closer than this are coincident.
 constexpr double kLatticeTolerance = 1e-6;
-// How far (relative) a point's volume may differ from dx^2 thickness.
+// How far (relative) a point's volume may differ from dx^2 thickness and still count as the
+// grid cell's (the body then gives every particle exactly that volume).
 constexpr double kVolumeTolerance = 1e-6;
+// The range of a point's volume against dx^2 thickness: a graded mesh's cells lie well within it,
+// a file in the wrong unit (a factor of 1e9 for mm^3 read as m^3) does not.
+constexpr double kVolumeRange = 1e3;
 
 // The nearest grid node of every point, and whether all of them lie on the grid. Throws
 // InputError naming `file` and the line of two coincident points (on the grid: on one node; off
-// it: within kLatticeTolerance dx) or of a volume other than dx^2 thickness (the body gives every
-// particle that volume).
+// it: within kLatticeTolerance dx) or of a volume beyond kVolumeRange times or below 1 /
+// kVolumeRange of dx^2 thickness.
 CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thickness, const std::string& file);
 
 }  // namespace periflex

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <memory>
 
 #include "output/point_file_writer.h"
 #include "pd/cloud_grid.h"
@@ -51,6 +52,34 @@ TEST(PointFileWriter, BodiesReadBackBitForBitByBlock) {
     }
     EXPECT_GT(flagged, 0);  // the strip's particles carry their flag through the file
   }
+}
+
+// A body read from a graded point file (volumes of its own) is written with those volumes, each
+// read back as the same double.
+TEST(PointFileWriter, VolumesOfAGradedFileAreWrittenAsGiven) {
+  auto cloud = std::make_shared<ParticleCloud>();
+  const double dx = 1e-3, t = 2e-3;
+  for (int k = 0; k < 6; ++k) {
+    const double h = k < 3 ? dx : 0.5 * dx;
+    cloud->x.push_back(k * 0.7 * dx);
+    cloud->y.push_back(0.1 * k * dx);
+    cloud->volume.push_back(h * h * t * (1.0 + 0.1 / 3.0 * k));
+    cloud->no_fail.push_back(0);
+  }
+  SceneDef scene;
+  scene.name = "graded";
+  FlexBodyDef def;
+  def.name = "g";
+  def.grid_spacing = dx;
+  def.thickness = t;
+  def.particles = cloud;
+  scene.flex_bodies = {def};
+  const auto path = std::filesystem::temp_directory_path() / "periflex_points_graded.csv";
+  write_point_file(path.string(), scene);
+  const ParticleCloud back = read_point_file(path.string(), {});
+  ASSERT_EQ(back.size(), cloud->size());
+  EXPECT_EQ(back.volume, cloud->volume);
+  EXPECT_EQ(back.x, cloud->x);
 }
 
 }  // namespace

@@ -10,11 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <random>
 
+#include "core/error.h"
 #include "pd/bond_kernel.h"
 #include "pd/cloud_grid.h"
 #include "pd/pd_body.h"
+#include "pd/pd_material.h"
 #include "pd_static_support.h"
 #include "pd_test_support.h"
 #include "scene/dxf_shape.h"
@@ -173,6 +176,103 @@ TEST(OffGrid, TearingBreaksBothCopiesAndIsBitIdenticalOnOneAndTwoThreads) {
   EXPECT_GT(pairs, 100);
   EXPECT_EQ(broken[0], broken[1]);
   EXPECT_EQ(positions[0], positions[1]);
+}
+
+// A point file of two spacings: dx on the left half of a 40 x 20 dx plate, dx / 2 (a quarter of
+// the volume) on the right half, as a mesh refined where a crack will run. The body's spacing
+// (which sets the horizon, 3 dx) is dx throughout.
+std::shared_ptr<ParticleCloud> graded_cloud(double dx, double thickness) {
+  auto cloud = std::make_shared<ParticleCloud>();
+  const auto add = [&](double x, double y, double h) {
+    cloud->x.push_back(x);
+    cloud->y.push_back(y);
+    cloud->volume.push_back(h * h * thickness);
+    cloud->no_fail.push_back(0);
+  };
+  for (int j = 0; j < 20; ++j)
+    for (int i = 0; i < 20; ++i) add((i - 19.5) * dx, (j - 9.5) * dx, dx);
+  for (int j = 0; j < 40; ++j)
+    for (int i = 0; i < 40; ++i) add((i + 0.5) * 0.5 * dx, (j - 19.5) * 0.5 * dx, 0.5 * dx);
+  cloud->source = "points graded.csv";
+  return cloud;
+}
+
+// Under a uniform strain each particle's strain energy density is the sum over its bonds of
+// k0 |xi| s^2 / 4 over its own volume, where k0 = c w beta V_i V_j: on unequal volumes the sum
+// weighs each neighbour by its own volume. Deep inside either half (beyond a horizon and a
+// spacing from every edge and from the seam) it must come to the continuum's
+// pi c t delta^3 eps^2 / 16 (uniaxial strain, no surface correction) as closely as the sum on a
+// grid does: the coarse half exactly as a plate on the grid of spacing dx (measured 1.9 % off:
+// three spacings to the horizon), the fine half (six) no further off. Tolerance 2.5 % for both.
+TEST(OffGrid, GradedPointFileKeepsTheContinuumEnergyDensityOnBothSpacings) {
+  const double dx = 1e-3, t = 1e-3, eps = 1e-4, delta = 3 * dx;
+  const double continuum = uniaxial_strain_energy_density(micromodulus(72e9, t, delta, false), t, delta, eps);
+  Eigen::Matrix2d strain = Eigen::Matrix2d::Zero();
+  strain(0, 0) = eps;
+  // the largest departure from the continuum over the interior particles of each half
+  // (x < 0, x > 0) of a 40 x 20 mm plate
+  const auto interior_error = [&](PdBody& body, double out[2], int counted[2]) {
+    std::vector<double> density;
+    body.strain_energy_density(test::affine_positions(body, strain), density);
+    const std::vector<double>& x = body.reference_positions();
+    for (int i = 0; i < body.particle_count(); ++i) {
+      const double px = x[2 * i], py = x[2 * i + 1], keep = delta + dx;
+      if (std::abs(px) < keep || std::abs(px) > 0.02 - keep || std::abs(py) > 0.01 - keep) continue;
+      const int half = px > 0.0 ? 1 : 0;
+      out[half] = std::max(out[half], std::abs(density[i] / continuum - 1.0));
+      ++counted[half];
+    }
+  };
+  FlexBodyDef def = test::glass_plate(0.04, 0.02, dx, t);
+  def.surface_correction = false;
+  def.fracture = false;
+  auto grid = PdBody::build(def, 0);
+  def.particles = graded_cloud(dx, t);
+  auto graded = PdBody::build(def, 0);
+  ASSERT_EQ(graded->particle_count(), 400 + 1600);
+  EXPECT_EQ(graded->volumes()[0], dx * dx * t);
+  EXPECT_EQ(graded->volumes()[400], 0.25 * dx * dx * t);
+  double on_grid[2] = {0.0, 0.0}, worst[2] = {0.0, 0.0};
+  int grid_counted[2] = {0, 0}, counted[2] = {0, 0};
+  interior_error(*grid, on_grid, grid_counted);
+  interior_error(*graded, worst, counted);
+  std::printf("graded plate: energy density within %.2e (coarse, %d particles) and %.2e (fine, %d) of the "
+              "continuum; on the grid %.2e\n", worst[0], counted[0], worst[1], counted[1], on_grid[0]);
+  EXPECT_GT(counted[0], 10);
+  EXPECT_GT(counted[1], 40);
+  EXPECT_NEAR(worst[0], on_grid[0], 1e-9);
+  EXPECT_LE(worst[1], worst[0]);
+  EXPECT_LT(worst[0], 0.025);
+  EXPECT_LT(worst[1], 0.025);
+}
+
+// A body force on unequal volumes acts on each particle in proportion to its volume: the total
+// is the force density times the plate's volume (0.04 x 0.02 x 1 mm), the coarse half's
+// particles each take four times a fine one's. The state-based law, whose dilatation takes one
+// volume for all, refuses such a file naming the key.
+TEST(OffGrid, BodyForceOnAGradedPointFileFollowsEachVolumeAndTheStateBasedLawRefusesIt) {
+  const double dx = 1e-3, t = 1e-3, b = 2e6;
+  FlexBodyDef def = test::glass_plate(0.04, 0.02, dx, t);
+  def.particles = graded_cloud(dx, t);
+  RegionLoadDef load;
+  load.kind = RegionLoadDef::Kind::kBodyForce;
+  load.name = "weight";
+  load.region = test::box(1.0, 1.0);
+  load.fy = TimeFunction::constant(-b);
+  def.loads.push_back(load);
+  auto body = PdBody::build(def, 0);
+  const Eigen::VectorXd f = test::forces_at(*body, test::reference_q(*body));
+  EXPECT_NEAR(f(Eigen::seq(1, f.size() - 1, 2)).sum(), -b * 0.04 * 0.02 * t, 1e-12 * b * 0.04 * 0.02 * t);
+  EXPECT_DOUBLE_EQ(f[1], 4.0 * f[2 * 400 + 1]);
+  def.material.model = PdMaterialDef::Model::kStateBased;
+  def.material.poisson_ratio = 0.22;
+  try {
+    PdBody::build(def, 0);
+    ADD_FAILURE() << "a state-based body on unequal volumes was built";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where().key, "material.model") << e.what();
+    EXPECT_NE(std::string(e.what()).find("graded.csv"), std::string::npos) << e.what();
+  }
 }
 
 // An 80 x 60 mm outline with a hole of radius 5 mm, as a CAD program writes it (millimetres).

@@ -1,6 +1,6 @@
 // Points of a file placed against the body's grid: the indices follow the positions, points off
 // the grid make a cloud off it (each with its nearest node), and two coincident points or a
-// wrong volume are refused naming the line.
+// volume far from the grid cell's are refused naming the line.
 #include <gtest/gtest.h>
 
 #include "core/error.h"
@@ -66,12 +66,17 @@ TEST(CloudLattice, CoincidentPointsNameBothLines) {
   EXPECT_NE(message.find("coincides with the point of line 11"), std::string::npos) << message;
 }
 
-TEST(CloudLattice, VolumeOtherThanTheGridCellsNamesItsLine) {
+// Volumes other than the grid cell's (a graded mesh) are kept; one a thousand times off (a file
+// in the wrong unit) is refused naming its line.
+TEST(CloudLattice, VolumesOfTheirOwnAreKeptAndAVolumeFarOffNamesItsLine) {
   ParticleCloud c = cloud({{0, 0}, {1, 0}}, 2.0);
+  EXPECT_TRUE(place_on_lattice(c, 1.0, 2.0, "f.csv").cell_volumes);
   c.volume[1] = 2.5;
+  EXPECT_FALSE(place_on_lattice(c, 1.0, 2.0, "f.csv").cell_volumes);
+  c.volume[1] = 2.0 * 1.01e3;
   std::string message;
   EXPECT_EQ(error_line(c, 1.0, 2.0, &message), 11);
-  EXPECT_NE(message.find("differs from grid_spacing^2 x thickness"), std::string::npos) << message;
+  EXPECT_NE(message.find("1010 times grid_spacing^2 x thickness"), std::string::npos) << message;
 }
 
 }  // namespace

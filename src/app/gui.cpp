@@ -44,7 +44,7 @@ int run_gui(const GuiOptions& options) {
       playback = std::make_unique<PlaybackSource>(options.playback_dir);
       worker = std::make_unique<SimWorker>(playback->factory(), playback->scene_path(), options.overrides, log);
     } else {
-      worker = std::make_unique<SimWorker>(simulation_model_factory(), options.scene_path, options.overrides,
+      worker = std::make_unique<SimWorker>(live_run_factory(), options.scene_path, options.overrides,
                                            log);
     }
   } catch (const InputError& e) {

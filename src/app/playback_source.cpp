@@ -19,9 +19,9 @@ namespace periflex {
 namespace {
 
 // The replay as the worker's model: a step shows the requested state, or the next one.
-class PlaybackModel final : public SteppedModel {
+class PlaybackRun final : public SteppedRun {
  public:
-  PlaybackModel(std::unique_ptr<StateReplay> replay, std::shared_ptr<PlaybackSource::Cursor> cursor)
+  PlaybackRun(std::unique_ptr<StateReplay> replay, std::shared_ptr<PlaybackSource::Cursor> cursor)
       : replay_(std::move(replay)), cursor_(std::move(cursor)) {
     show(0);
   }
@@ -90,8 +90,8 @@ PlaybackSource::PlaybackSource(const std::string& dir) : dir_(dir), cursor_(std:
 
 PlaybackSource::~PlaybackSource() = default;
 
-ModelFactory PlaybackSource::factory() {
-  ModelFactory f;
+RunFactory PlaybackSource::factory() {
+  RunFactory f;
   // the worker loads its scene and builds its model once at start, and again on a reset that
   // the model cannot do or on a reload: the replay built in the constructor first, a fresh one
   // of the same folder after (which checks the scene file again)
@@ -102,9 +102,9 @@ ModelFactory PlaybackSource::factory() {
     return (*pending)->scene();
   };
   auto cursor = cursor_;
-  f.build = [pending, dir, cursor](const SceneDef&) -> std::unique_ptr<SteppedModel> {
+  f.build = [pending, dir, cursor](const SceneDef&) -> std::unique_ptr<SteppedRun> {
     std::unique_ptr<StateReplay> replay = *pending ? std::move(*pending) : open_replay(dir);
-    return std::make_unique<PlaybackModel>(std::move(replay), cursor);
+    return std::make_unique<PlaybackRun>(std::move(replay), cursor);
   };
   return f;
 }

@@ -28,7 +28,7 @@ class PlaybackSource {
   ~PlaybackSource();
 
   // The worker's factory: its model is this replay. The scene path it is given is ignored.
-  ModelFactory factory();
+  RunFactory factory();
   // The scene file named by the folder's record (the worker's scene path, watched for changes).
   const std::string& scene_path() const { return scene_path_; }
 

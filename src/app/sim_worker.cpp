@@ -23,12 +23,12 @@ constexpr double kMaxLag = 0.25;
 
 }  // namespace
 
-SimWorker::SimWorker(ModelFactory factory, const std::string& scene_path,
+SimWorker::SimWorker(RunFactory factory, const std::string& scene_path,
                      std::vector<std::string> overrides, EventLog& log)
     : factory_(std::move(factory)), log_(log), scene_path_(scene_path), overrides_(std::move(overrides)) {
   // the first scene is loaded here so that run_gui can exit with code 2 before opening a window
   scene_ = factory_.load(scene_path_, overrides_);
-  model_ = factory_.build(scene_);
+  run_ = factory_.build(scene_);
   scene_generation_ = 1;
   log_.add("loaded scene '" + scene_.name + "' from " + scene_path_ +
            (scene_.solver.device == "gpu" ? ", bond forces on the GPU in " + scene_.solver.precision : ""));
@@ -75,26 +75,26 @@ bool SimWorker::take_recorded(Snapshot& out) {
 
 void SimWorker::reanchor() {
   anchor_wall_ = Clock::now();
-  anchor_sim_ = model_->time();
+  anchor_sim_ = run_->time();
   rate_wall_ = anchor_wall_;
-  rate_steps_ = model_->step_count();
-  rate_sim_ = model_->time();
+  rate_steps_ = run_->step_count();
+  rate_sim_ = run_->time();
 }
 
 void SimWorker::publish() {
   // the snapshot first, then the status that describes it
-  model_->fill_snapshot(exchange_.back());
+  run_->fill_snapshot(exchange_.back());
   exchange_.publish();
   WorkerStatus s;
   s.running = running_;
-  s.time = model_->time();
-  s.step = model_->step_count();
-  s.end_time = model_->end_time();
+  s.time = run_->time();
+  s.step = run_->step_count();
+  s.end_time = run_->end_time();
   s.speed = speed_;
   s.steps_per_second = running_ ? steps_per_second_ : 0.0;
   s.sim_seconds_per_second = running_ ? sim_per_second_ : 0.0;
-  s.settings = model_->settings();
-  s.info = model_->info();
+  s.settings = run_->settings();
+  s.info = run_->info();
   s.scene_path = scene_path_;
   s.scene_name = scene_.name;
   s.scene_description = scene_.description;
@@ -142,11 +142,11 @@ void SimWorker::note_rejection(const std::exception& e) {
 
 void SimWorker::rebuild(const SceneDef& scene, bool keep_settings, const char* what) {
   // build the new model completely before replacing the old one, so a failure keeps it
-  const LiveSettings kept = model_->settings();
-  std::unique_ptr<SteppedModel> fresh = factory_.build(scene);
+  const LiveSettings kept = run_->settings();
+  std::unique_ptr<SteppedRun> fresh = factory_.build(scene);
   // live changes carry over; a model already on those settings is left alone
   if (keep_settings && !same_live_settings(kept, fresh->settings())) fresh->apply(kept);
-  model_ = std::move(fresh);
+  run_ = std::move(fresh);
   restarted(scene.name, what);
 }
 
@@ -165,7 +165,7 @@ void SimWorker::restarted(const std::string& scene_name, const char* what) {
   history_defaults();
   // a recording goes on from the new start
   if (record_interval_ > 0.0) {
-    record_start_ = model_->time();
+    record_start_ = run_->time();
     record_marks_ = 0;
     record_if_due();
   }
@@ -197,11 +197,11 @@ void SimWorker::record_if_due() {
   // frames at fixed simulated times: the first step at or after each mark start + k interval
   // (marks counted, not summed, so they do not drift), one frame however many marks a step crosses
   const auto mark = [this](long k) { return record_start_ + static_cast<double>(k) * record_interval_; };
-  const double now = model_->time() + 1e-9 * record_interval_;
+  const double now = run_->time() + 1e-9 * record_interval_;
   if (record_interval_ <= 0.0 || now < mark(record_marks_)) return;
   while (mark(record_marks_) <= now) ++record_marks_;
   Snapshot frame;
-  model_->fill_snapshot(frame);
+  run_->fill_snapshot(frame);
   std::unique_lock<std::mutex> lock(record_mutex_);
   record_space_.wait(lock, [this] { return recorded_.size() < kMaxRecorded || quitting_; });
   recorded_.push_back(std::move(frame));
@@ -231,8 +231,8 @@ void SimWorker::loop() {
     if (running_ && speed_ > 0.0) {
       const double wall = std::chrono::duration<double>(Clock::now() - anchor_wall_).count();
       const double target = anchor_sim_ + speed_ * wall;
-      if (model_->time() >= target) {
-        const double ahead = (model_->time() - target) / speed_;
+      if (run_->time() >= target) {
+        const double ahead = (run_->time() - target) / speed_;
         commands_.wait_for(std::chrono::duration<double>(std::min(ahead, 0.01)));
         if (Clock::now() - last_publish > std::chrono::duration<double>(kPublishInterval)) {
           publish();
@@ -240,17 +240,17 @@ void SimWorker::loop() {
         }
         continue;
       }
-      if ((target - model_->time()) / speed_ > kMaxLag) {
+      if ((target - run_->time()) / speed_ > kMaxLag) {
         anchor_wall_ = Clock::now() - std::chrono::duration_cast<Clock::duration>(
                                           std::chrono::duration<double>(kMaxLag));
-        anchor_sim_ = model_->time();
+        anchor_sim_ = run_->time();
       }
     }
 
     // one step; a numerical failure pauses the run and is shown, never thrown further
-    const bool before_end = model_->end_time() > 0.0 && model_->time() < model_->end_time();
+    const bool before_end = run_->end_time() > 0.0 && run_->time() < run_->end_time();
     try {
-      model_->step();
+      run_->step();
     } catch (const NumericalError& e) {
       running_ = false;
       pending_steps_ = 0;
@@ -262,7 +262,7 @@ void SimWorker::loop() {
     } catch (const std::exception& e) {
       running_ = false;
       pending_steps_ = 0;
-      numerical_error_ = NumericalDiagnostic{"step", model_->step_count(), model_->time(), e.what(), ""};
+      numerical_error_ = NumericalDiagnostic{"step", run_->step_count(), run_->time(), e.what(), ""};
       numerical_message_ = e.what();
       log_.add(std::string("step failed, paused: ") + e.what());
       publish();
@@ -270,26 +270,26 @@ void SimWorker::loop() {
     }
     record_if_due();
     // the history: one comparison per step when its cadence is off
-    if (history_.due(model_->time())) save_history_if_due();
+    if (history_.due(run_->time())) save_history_if_due();
 
     bool publish_now = false;
     if (pending_steps_ > 0 && --pending_steps_ == 0) publish_now = true;
     // the scene's end time pauses a run once; pressing run again continues past it
-    if (running_ && before_end && model_->time() >= model_->end_time()) {
+    if (running_ && before_end && run_->time() >= run_->end_time()) {
       running_ = false;
       publish_now = true;
-      log_.add("reached the scene's end time t = " + std::to_string(model_->end_time()) + ", paused");
+      log_.add("reached the scene's end time t = " + std::to_string(run_->end_time()) + ", paused");
     }
 
     // rates over a sliding half second
     const Clock::time_point now = Clock::now();
     const double span = std::chrono::duration<double>(now - rate_wall_).count();
     if (span >= kRateWindow) {
-      steps_per_second_ = (model_->step_count() - rate_steps_) / span;
-      sim_per_second_ = (model_->time() - rate_sim_) / span;
+      steps_per_second_ = (run_->step_count() - rate_steps_) / span;
+      sim_per_second_ = (run_->time() - rate_sim_) / span;
       rate_wall_ = now;
-      rate_steps_ = model_->step_count();
-      rate_sim_ = model_->time();
+      rate_steps_ = run_->step_count();
+      rate_sim_ = run_->time();
     }
     // A snapshot with its status costs passes over every bond (elastic energy, strain): on a
     // large body as much as a step or more. While stepping, publish at most so often that it

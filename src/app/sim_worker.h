@@ -27,9 +27,9 @@
 namespace periflex {
 
 // What the worker steps: the Simulation in the program, small fakes in the tests.
-class SteppedModel {
+class SteppedRun {
  public:
-  virtual ~SteppedModel() = default;
+  virtual ~SteppedRun() = default;
   virtual void step() = 0;                                     // may throw NumericalError
   virtual double time() const = 0;
   virtual long step_count() const = 0;
@@ -61,9 +61,9 @@ class SteppedModel {
 // How the worker gets scenes and models: load reads a file (throws InputError), build makes a
 // ready-to-step model from a scene (throws InputError or NumericalError).
 // started (optional) runs first thing on the simulation thread, for per-thread set-up.
-struct ModelFactory {
+struct RunFactory {
   std::function<SceneDef(const std::string& path, const std::vector<std::string>& overrides)> load;
-  std::function<std::unique_ptr<SteppedModel>(const SceneDef& scene)> build;
+  std::function<std::unique_ptr<SteppedRun>(const SceneDef& scene)> build;
   std::function<void()> started;
 };
 
@@ -71,7 +71,7 @@ struct ModelFactory {
 // thread's parallel force loops use one core fewer than the machine has (at least one), so
 // drawing keeps a core: with every core busy stepping, the solver's threads and the render
 // thread take turns and both slow down many times. A set OMP_NUM_THREADS is followed instead.
-ModelFactory simulation_model_factory();
+RunFactory live_run_factory();
 
 // A copy of the worker's state for the panels, refreshed whenever a snapshot is published.
 struct WorkerStatus {
@@ -115,7 +115,7 @@ class SimWorker {
  public:
   // Loads and builds the first scene in the calling thread, so a bad scene is reported
   // before any window opens. Throws InputError or NumericalError. Call start() to step.
-  SimWorker(ModelFactory factory, const std::string& scene_path, std::vector<std::string> overrides,
+  SimWorker(RunFactory factory, const std::string& scene_path, std::vector<std::string> overrides,
             EventLog& log);
   ~SimWorker();
   SimWorker(const SimWorker&) = delete;
@@ -166,14 +166,14 @@ class SimWorker {
 
   using Clock = std::chrono::steady_clock;
 
-  ModelFactory factory_;
+  RunFactory factory_;
   EventLog& log_;
   CommandQueue<SimCommand> commands_;
   SnapshotExchange<Snapshot> exchange_;
   std::thread thread_;
 
   // owned by the simulation thread (and by the constructor before start)
-  std::unique_ptr<SteppedModel> model_;
+  std::unique_ptr<SteppedRun> run_;
   SceneDef scene_;
   std::string scene_path_;
   std::vector<std::string> overrides_;

@@ -63,14 +63,14 @@ template <>
 void SimWorker::handle(command::Pause&, const std::string& by) {
   running_ = false;
   pending_steps_ = 0;
-  log_.add("pause at t = " + std::to_string(model_->time()) + by);
+  log_.add("pause at t = " + std::to_string(run_->time()) + by);
 }
 
 template <>
 void SimWorker::handle(command::ToggleRun&, const std::string& by) {
   if (running_) {
     running_ = false;
-    log_.add("pause at t = " + std::to_string(model_->time()) + by);
+    log_.add("pause at t = " + std::to_string(run_->time()) + by);
     return;
   }
   command::Run run;
@@ -94,8 +94,8 @@ void SimWorker::handle(command::StepTo& step_to, const std::string& by) {
   running_ = false;
   // whole steps of dt from now, the last one at or after the time asked (a step of dt
   // that would overshoot it by less than a billionth of dt is not taken)
-  const double dt = model_->settings().dt;
-  const double remaining = step_to.time - model_->time();
+  const double dt = run_->settings().dt;
+  const double remaining = step_to.time - run_->time();
   const double steps = dt > 0.0 && remaining > 0.0 ? std::ceil(remaining / dt - 1e-9) : 0.0;
   pending_steps_ = static_cast<int>(std::min(steps, 2e9));
   log_.add("step to t = " + std::to_string(step_to.time) + ": " + std::to_string(pending_steps_) + " steps" + by);
@@ -105,7 +105,7 @@ template <>
 void SimWorker::handle(command::Reset&, const std::string& by) {
   try {
     // the model puts back the state it started in; one that cannot is built again
-    if (model_->reset_to_start())
+    if (run_->reset_to_start())
       restarted(scene_.name, ("reset" + by).c_str());
     else
       rebuild(scene_, true, ("reset" + by).c_str());
@@ -128,9 +128,9 @@ void SimWorker::handle(command::LoadScene& load, const std::string& by) {
 template <>
 void SimWorker::handle(command::ApplySettings& apply, const std::string& by) {
   try {
-    model_->apply(apply.settings);
+    run_->apply(apply.settings);
     settings_accepted();
-    log_.add("settings: " + describe_settings(model_->settings()) + by);
+    log_.add("settings: " + describe_settings(run_->settings()) + by);
   } catch (const std::exception& e) {
     note_rejection(e);
     log_.add("settings rejected: " + std::string(e.what()) + by);
@@ -139,7 +139,7 @@ void SimWorker::handle(command::ApplySettings& apply, const std::string& by) {
 
 template <>
 void SimWorker::handle(command::SetParameter& set, const std::string& by) {
-  LiveSettings s = model_->settings();
+  LiveSettings s = run_->settings();
   const std::string what = "set " + set.key + "=" + set.value;
   const std::string problem = set_live_parameter(s, set.key, set.value);
   if (!problem.empty()) {
@@ -149,7 +149,7 @@ void SimWorker::handle(command::SetParameter& set, const std::string& by) {
     return;
   }
   try {
-    model_->apply(s);
+    run_->apply(s);
     settings_accepted();
     log_.add(what + by);
   } catch (const std::exception& e) {
@@ -167,7 +167,7 @@ void SimWorker::handle(command::SetSpeed& speed, const std::string& by) {
 
 template <>
 void SimWorker::handle(command::MouseSpring& mouse, const std::string& by) {
-  mouse_stiffness_ = model_->set_mouse_spring(mouse.spring);
+  mouse_stiffness_ = run_->set_mouse_spring(mouse.spring);
   // dragging sends a request per frame: log only grabbing and releasing
   if (!mouse.spring) {
     log_.add("mouse spring released" + by);
@@ -179,21 +179,21 @@ void SimWorker::handle(command::MouseSpring& mouse, const std::string& by) {
 
 template <>
 void SimWorker::handle(command::Reactions& reactions, const std::string&) {
-  model_->set_reactions(reactions.with_reactions);
+  run_->set_reactions(reactions.with_reactions);
 }
 
 template <>
 void SimWorker::handle(command::Cut& cut, const std::string& by) {
   // paused or running, between two steps; a cut into a state shown changes its future
   leave_scrub(("knife" + by).c_str());
-  const long count = model_->cut_bonds(cut.from, cut.to, cut.drawn_x, cut.drawn_y);
+  const long count = run_->cut_bonds(cut.from, cut.to, cut.drawn_x, cut.drawn_y);
   log_.add("knife: " + std::to_string(count) + (count == 1 ? " bond cut" : " bonds cut") + by);
 }
 
 template <>
 void SimWorker::handle(command::Record& record, const std::string& by) {
   record_interval_ = record.interval > 0.0 ? record.interval : 0.0;
-  record_start_ = model_->time();
+  record_start_ = run_->time();
   record_marks_ = 0;
   log_.add(record_interval_ > 0.0 ? "recording every " + std::to_string(record_interval_) + " s" + by
                                   : "recording stopped" + by);
@@ -206,11 +206,11 @@ void SimWorker::handle(command::History& history, const std::string& by) {
   // the user's cadence and budget hold for every scene from now on
   history_auto_ = false;
   const size_t budget = static_cast<size_t>(std::max(1, history.budget_mb)) << 20;
-  history_.configure(history.interval, budget, model_->time());
+  history_.configure(history.interval, budget, run_->time());
   log_.add((history_.interval() > 0.0 ? "history: a state every " + std::to_string(history_.interval()) + " s"
                                       : std::string("history: off")) +
            ", budget " + std::to_string(budget >> 20) + " MB" + by);
-  if (scrub_ < 0 && history_.due(model_->time())) save_history_if_due();
+  if (scrub_ < 0 && history_.due(run_->time())) save_history_if_due();
 }
 
 template <>

@@ -22,36 +22,36 @@ void SimWorker::history_defaults() {
   // until the user sets one; the budget stays as set
   double interval = history_.interval();
   if (history_auto_) {
-    const double end = model_->end_time();
-    interval = end > 0.0 ? end / kDefaultHistoryStates : 1000.0 * model_->settings().dt;
+    const double end = run_->end_time();
+    interval = end > 0.0 ? end / kDefaultHistoryStates : 1000.0 * run_->settings().dt;
   }
   const size_t budget = history_.budget() > 0 ? history_.budget() : kDefaultHistoryBudget;
-  history_.configure(interval, budget, model_->time());
-  history_.clear(model_->time());
+  history_.configure(interval, budget, run_->time());
+  history_.clear(run_->time());
   scrub_ = -1;
-  if (history_.due(model_->time())) save_history_if_due();
+  if (history_.due(run_->time())) save_history_if_due();
 }
 
 void SimWorker::save_history_if_due() {
   // called only when due (the loop checks first, so a cadence of 0 costs one comparison); an
   // instant kept already is not taken twice
-  if (history_.has(model_->time())) {
-    history_.pass(model_->time());
+  if (history_.has(run_->time())) {
+    history_.pass(run_->time());
     return;
   }
   SimState state;
   // a model that keeps no state: the marks move on all the same, so it is not asked every step
-  if (!model_->save_state(state)) {
-    history_.pass(model_->time());
+  if (!run_->save_state(state)) {
+    history_.pass(run_->time());
     return;
   }
-  history_.add(std::move(state), model_->time(), model_->step_count());
+  history_.add(std::move(state), run_->time(), run_->step_count());
 }
 
 void SimWorker::scrub_to(size_t index, const std::string& by) {
   SimState state;
   history_.get(index, state);
-  if (!model_->restore_state(state)) {
+  if (!run_->restore_state(state)) {
     log_.add("this model keeps no history" + by);
     return;
   }
@@ -59,22 +59,22 @@ void SimWorker::scrub_to(size_t index, const std::string& by) {
   scrub_ = static_cast<long>(index);
   running_ = false;
   pending_steps_ = 0;
-  mouse_stiffness_ = model_->set_mouse_spring(std::nullopt);
+  mouse_stiffness_ = run_->set_mouse_spring(std::nullopt);
   numerical_error_.reset();
   numerical_message_.clear();
   reanchor();
   // a recording goes on from the state shown once it runs again
   if (record_interval_ > 0.0) {
-    record_start_ = model_->time();
+    record_start_ = run_->time();
     record_marks_ = 0;
   }
-  log_.add("history: t = " + seconds(model_->time()) + " (state " + std::to_string(index + 1) + " of " +
+  log_.add("history: t = " + seconds(run_->time()) + " (state " + std::to_string(index + 1) + " of " +
            std::to_string(history_.size()) + ")" + by);
 }
 
 bool SimWorker::keep_live(const std::string& by) {
   // the live state is kept first, so scrubbing forward again comes back to it
-  if (scrub_ < 0 && (history_.size() == 0 || model_->time() > history_.time(history_.size() - 1))) {
+  if (scrub_ < 0 && (history_.size() == 0 || run_->time() > history_.time(history_.size() - 1))) {
     save_history_if_due();
   }
   if (history_.size() == 0) log_.add("history: no states kept (cadence off or model without history)" + by);
@@ -95,7 +95,7 @@ void SimWorker::leave_scrub(const char* why) {
   const size_t dropped = history_.size() - static_cast<size_t>(scrub_) - 1;
   history_.drop_after(static_cast<size_t>(scrub_));
   scrub_ = -1;
-  log_.add(std::string(why) + " from t = " + seconds(model_->time()) + ": " + std::to_string(dropped) +
+  log_.add(std::string(why) + " from t = " + seconds(run_->time()) + ": " + std::to_string(dropped) +
            " later history states dropped");
 }
 

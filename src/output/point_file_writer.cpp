@@ -19,7 +19,8 @@ void append_number(std::string& out, double value) {
 
 std::string point_file_text(const SceneDef& scene) {
   std::string out = "# periflex points of scene '" + scene.name + "': reference x, y [m], volume [m^3] " +
-                    "(grid_spacing^2 x thickness unless a graded file gave its own), block (the flexible body), no_fail (1: bonds never break)\n";
+                    "(grid_spacing^2 x thickness unless a graded file gave its own), block (the flexible body), " +
+                    "no_fail (1: bonds never break)\n";
   for (size_t b = 0; b < scene.flex_bodies.size(); ++b) {
     const FlexBodyDef& def = scene.flex_bodies[b];
     out += "# block " + std::to_string(b + 1) + ": flexible body '" + def.name + "', grid_spacing ";

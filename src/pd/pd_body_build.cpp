@@ -179,7 +179,8 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
   parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       double sum = 0.0;
-      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) sum += on_grid ? m.class_weight[bonds.length_class[b]] : m.bond_weight[b];
+      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b)
+        sum += on_grid ? m.class_weight[bonds.length_class[b]] : m.bond_weight[b];
       m.initial_weight[i] = sum + (def.damage == FlexBodyDef::Damage::kIncludeNotch ? notch_weight[i] : 0.0);
     }
   });
@@ -325,9 +326,8 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   m->no_fail = body_no_fail(def, m->grid);
   std::vector<double> k0, nx2;
   make_bonds(*m, k0, nx2);
-  m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, m->grid.volume.empty() ? nullptr : m->volume.data(),
-                                    k0, nx2, m->no_fail_flags()},
-                           m->bonds);
+  const double* volumes = m->grid.volume.empty() ? nullptr : m->volume.data();
+  m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, volumes, k0, nx2, m->no_fail_flags()}, m->bonds);
   collect_loads(*m);
 
   m->bond_damping = def.bond_damping;

@@ -20,7 +20,9 @@ namespace {
 
 // what the row loops read for 1/|xi|: the class of each bond and the class table, or (a body off
 // the grid) no classes and each bond's own
-inline const uint8_t* cls_of(const BondStore& bonds) { return bonds.own_lengths() ? nullptr : bonds.length_class.data(); }
+inline const uint8_t* cls_of(const BondStore& bonds) {
+  return bonds.own_lengths() ? nullptr : bonds.length_class.data();
+}
 inline const double* l0_of(const BondStore& bonds) {
   return bonds.own_lengths() ? bonds.bond_inv_length.data() : bonds.inv_length_table.data();
 }
@@ -161,10 +163,10 @@ bool use_avx512(const BondStore& bonds) {
 #endif
 
 // W_i of rows [begin, end) into out
-void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedModel& model, const double* pos,
+void energy_rows(int begin, int end, const BondStore& bonds, const LpsFields& lps, const double* pos,
                  double* out) {
   for (int i = begin; i < end; ++i) {
-    const double m = model.weighted_volume[i];
+    const double m = lps.weighted_volume[i];
     if (!(m > 0.0)) {
       out[i] = 0.0;
       continue;
@@ -177,7 +179,7 @@ void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedMod
       const double x0 = ref_length(bonds, b);
       sum += double(bonds.stiffness[b]) * x0 * (std::sqrt(dx * dx + dy * dy) - x0);
     }
-    const double theta = 2.0 * model.volume * sum / m;
+    const double theta = 2.0 * lps.volume * sum / m;
     double dev = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
       const int32_t j = bonds.neighbor[b];
@@ -186,7 +188,7 @@ void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedMod
       const double ed = std::sqrt(dx * dx + dy * dy) - x0 - 0.5 * theta * x0;
       dev += double(bonds.stiffness[b]) * ed * ed;
     }
-    out[i] = 0.5 * model.kappa * theta * theta + 4.0 * model.shear_modulus[i] / m * model.volume * dev;
+    out[i] = 0.5 * lps.kappa * theta * theta + 4.0 * lps.shear_modulus[i] / m * lps.volume * dev;
   }
 }
 
@@ -194,67 +196,67 @@ void energy_rows(int begin, int end, const BondStore& bonds, const StateBasedMod
 
 void set_state_based_avx512(bool enabled) { wide_loops = enabled; }
 
-void refresh_weighted_volumes(const BondStore& bonds, StateBasedModel& model, const std::vector<int>& particles) {
+void refresh_weighted_volumes(const BondStore& bonds, LpsFields& lps, const std::vector<int>& particles) {
   for (int i : particles) {
     double sum = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
       const double x0 = ref_length(bonds, b);
       sum += double(bonds.stiffness[b]) * x0 * x0;
     }
-    model.weighted_volume[i] = model.volume * sum;
-    model.shear_coef[i] = sum > 0.0 ? 8.0 * model.shear_modulus[i] / model.weighted_volume[i] : 0.0;
+    lps.weighted_volume[i] = lps.volume * sum;
+    lps.shear_coef[i] = sum > 0.0 ? 8.0 * lps.shear_modulus[i] / lps.weighted_volume[i] : 0.0;
   }
 }
 
-void update_weighted_volumes(const BondStore& bonds, StateBasedModel& model) {
+void update_weighted_volumes(const BondStore& bonds, LpsFields& lps) {
   const int n = bonds.particle_count();
-  if (model.shear_modulus.size() != static_cast<size_t>(n)) model.shear_modulus.assign(n, model.mu);
-  model.weighted_volume.assign(n, 0.0);
-  model.shear_coef.assign(n, 0.0);
-  model.bulk_coef.assign(n, 0.0);
-  model.dilatation.assign(n, 0.0);
-  model.records.assign(4 * static_cast<size_t>(n), 0.0);
+  if (lps.shear_modulus.size() != static_cast<size_t>(n)) lps.shear_modulus.assign(n, lps.mu);
+  lps.weighted_volume.assign(n, 0.0);
+  lps.shear_coef.assign(n, 0.0);
+  lps.bulk_coef.assign(n, 0.0);
+  lps.dilatation.assign(n, 0.0);
+  lps.records.assign(4 * static_cast<size_t>(n), 0.0);
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;
-  refresh_weighted_volumes(bonds, model, all);
+  refresh_weighted_volumes(bonds, lps, all);
 }
 
-void compute_dilatations(const BondStore& bonds, StateBasedModel& model, const double* pos) {
+void compute_dilatations(const BondStore& bonds, LpsFields& lps, const double* pos) {
   const RowLoops& loops = row_loops();
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
     loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
-                     l0_of(bonds), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
-                     pos, model.dilatation.data(), nullptr);
+                     l0_of(bonds), bonds.stiffness.data(), lps.weighted_volume.data(), lps.volume,
+                     pos, lps.dilatation.data(), nullptr);
   });
 }
 
-void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, const double* pos, const double* vel,
+void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double* pos, const double* vel,
                             double eta_over_e, double* force, double* row_max, double* pos_copy) {
   const int n = bonds.particle_count();
   // a_i = (2 kappa - 4 mu_i) theta_i / m_i
-  const double twice_kappa = 2.0 * model.kappa;
-  const double* mu = model.shear_modulus.data();
+  const double twice_kappa = 2.0 * lps.kappa;
+  const double* mu = lps.shear_modulus.data();
   const RowLoops& loops = row_loops();
 #ifdef PERIFLEX_HAVE_LPS_AVX512
   // the AVX-512 loops (undamped) when the CPU has them and the class tables fit two registers
   if (use_avx512(bonds) && !(eta_over_e > 0.0)) {
-    const double v2 = model.volume * model.volume;
+    const double v2 = lps.volume * lps.volume;
     for_row_blocks(n, [&](int begin, int end) {
       if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
-      lps_extension_sums_avx512(begin, end, bonds, pos, model.dilatation.data(), row_max);
+      lps_extension_sums_avx512(begin, end, bonds, pos, lps.dilatation.data(), row_max);
       for (int i = begin; i < end; ++i) {
-        const double m = model.weighted_volume[i];
-        model.dilatation[i] = m > 0.0 ? 2.0 * model.volume * model.dilatation[i] / m : 0.0;
-        model.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * model.dilatation[i] / m : 0.0;
-        double* record = model.records.data() + 4 * static_cast<int64_t>(i);
+        const double m = lps.weighted_volume[i];
+        lps.dilatation[i] = m > 0.0 ? 2.0 * lps.volume * lps.dilatation[i] / m : 0.0;
+        lps.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * lps.dilatation[i] / m : 0.0;
+        double* record = lps.records.data() + 4 * static_cast<int64_t>(i);
         record[0] = pos[2 * i];
         record[1] = pos[2 * i + 1];
-        record[2] = model.bulk_coef[i];
-        record[3] = model.shear_coef[i];
+        record[2] = lps.bulk_coef[i];
+        record[3] = lps.shear_coef[i];
       }
     });
     for_row_blocks(n, [&](int begin, int end) {
-      lps_forces_avx512(begin, end, bonds, model.records.data(), v2, force);
+      lps_forces_avx512(begin, end, bonds, lps.records.data(), v2, force);
     });
     return;
   }
@@ -263,53 +265,53 @@ void add_state_based_forces(const BondStore& bonds, StateBasedModel& model, cons
   for_row_blocks(n, [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
     loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
-                     l0_of(bonds), bonds.stiffness.data(), model.weighted_volume.data(), model.volume,
-                     pos, model.dilatation.data(), row_max);
+                     l0_of(bonds), bonds.stiffness.data(), lps.weighted_volume.data(), lps.volume,
+                     pos, lps.dilatation.data(), row_max);
     for (int i = begin; i < end; ++i) {
-      const double m = model.weighted_volume[i];
-      model.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * model.dilatation[i] / m : 0.0;
+      const double m = lps.weighted_volume[i];
+      lps.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * lps.dilatation[i] / m : 0.0;
     }
   });
   // pass 2: pair forces, which need a_j of every neighbour, so only after pass 1 has finished
-  const double v2 = model.volume * model.volume;
+  const double v2 = lps.volume * lps.volume;
   for_row_blocks(n, [&](int begin, int end) {
     loops.force(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
-                l0_of(bonds), bonds.stiffness.data(), model.bulk_coef.data(), model.shear_coef.data(),
+                l0_of(bonds), bonds.stiffness.data(), lps.bulk_coef.data(), lps.shear_coef.data(),
                 v2, pos, eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force);
   });
 }
 
-void state_based_energy_density(const BondStore& bonds, const StateBasedModel& model, const double* pos,
+void state_based_energy_density(const BondStore& bonds, const LpsFields& lps, const double* pos,
                                 double* out) {
-  for_row_blocks(bonds.particle_count(), [&](int begin, int end) { energy_rows(begin, end, bonds, model, pos, out); });
+  for_row_blocks(bonds.particle_count(), [&](int begin, int end) { energy_rows(begin, end, bonds, lps, pos, out); });
 }
 
-double state_based_strain_energy(const BondStore& bonds, const StateBasedModel& model, const double* pos) {
+double state_based_strain_energy(const BondStore& bonds, const LpsFields& lps, const double* pos) {
   // rows summed in fixed ranges and the ranges in order: the same bits on any thread count
   std::vector<double> density(bonds.particle_count());
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
-    energy_rows(static_cast<int>(begin), static_cast<int>(end), bonds, model, pos, density.data());
+    energy_rows(static_cast<int>(begin), static_cast<int>(end), bonds, lps, pos, density.data());
     double sum = 0.0;
     for (int64_t i = begin; i < end; ++i) sum += density[i];
-    return model.volume * sum;
+    return lps.volume * sum;
   });
 }
 
-double state_based_rows_energy(const BondStore& bonds, const StateBasedModel& model, const double* pos,
+double state_based_rows_energy(const BondStore& bonds, const LpsFields& lps, const double* pos,
                                const std::vector<int>& particles) {
   double sum = 0.0;
   std::vector<double> density(bonds.particle_count());
   for (int i : particles) {
-    energy_rows(i, i + 1, bonds, model, pos, density.data());
+    energy_rows(i, i + 1, bonds, lps, pos, density.data());
     sum += density[i];
   }
-  return model.volume * sum;
+  return lps.volume * sum;
 }
 
-double state_based_damping_power(const BondStore& bonds, const StateBasedModel& model, const double* pos,
+double state_based_damping_power(const BondStore& bonds, const LpsFields& lps, const double* pos,
                                  const double* vel, double eta_over_e) {
   // each pair is visited from both ends: half per visit
-  const double v2 = model.volume * model.volume;
+  const double v2 = lps.volume * lps.volume;
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
     for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
@@ -318,7 +320,7 @@ double state_based_damping_power(const BondStore& bonds, const StateBasedModel& 
         const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
         const double rate = (dx * (vel[2 * j] - vel[2 * i]) + dy * (vel[2 * j + 1] - vel[2 * i + 1])) /
                             std::sqrt(dx * dx + dy * dy);
-        sum += 0.5 * v2 * double(bonds.stiffness[b]) * (model.shear_coef[i] + model.shear_coef[j]) * eta_over_e *
+        sum += 0.5 * v2 * double(bonds.stiffness[b]) * (lps.shear_coef[i] + lps.shear_coef[j]) * eta_over_e *
                rate * rate;
       }
     }
@@ -326,20 +328,20 @@ double state_based_damping_power(const BondStore& bonds, const StateBasedModel& 
   });
 }
 
-double state_based_critical_time_step(const BondStore& bonds, const StateBasedModel& model,
+double state_based_critical_time_step(const BondStore& bonds, const LpsFields& lps,
                                       const std::vector<double>& masses) {
   // A_i / m_i per particle, A_i = max(2 kappa, 4 mu_i)
   std::vector<double> ratio(bonds.particle_count(), 0.0);
   for (int i = 0; i < bonds.particle_count(); ++i)
-    if (model.weighted_volume[i] > 0.0)
-      ratio[i] = std::max(2.0 * model.kappa, 4.0 * model.shear_modulus[i]) / model.weighted_volume[i];
-  const double v2 = model.volume * model.volume;
+    if (lps.weighted_volume[i] > 0.0)
+      ratio[i] = std::max(2.0 * lps.kappa, 4.0 * lps.shear_modulus[i]) / lps.weighted_volume[i];
+  const double v2 = lps.volume * lps.volume;
   double dt = std::numeric_limits<double>::infinity();
   for (int i = 0; i < bonds.particle_count(); ++i) {
-    const double mi = model.weighted_volume[i];
+    const double mi = lps.weighted_volume[i];
     double sum = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      const double mj = model.weighted_volume[bonds.neighbor[b]];
+      const double mj = lps.weighted_volume[bonds.neighbor[b]];
       if (!(mi > 0.0) || !(mj > 0.0)) continue;
       // k / |xi| of the bounding pair bond
       sum += 2.0 * double(bonds.stiffness[b]) * v2 * (ratio[i] + ratio[bonds.neighbor[b]]);

@@ -45,11 +45,11 @@ class StateBasedLaw : public MaterialLaw {
   void restore(const FlexState& in) override;
   size_t memory_bytes() const override;
 
-  const StateBasedModel& model() const { return lps_; }
+  const LpsFields& fields() const { return lps_; }
 
  private:
   double s0_;
-  StateBasedModel lps_;
+  LpsFields lps_;
 };
 
 }  // namespace periflex

@@ -17,7 +17,7 @@ using namespace std::chrono_literals;
 const std::string kScenes = std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/";
 
 TEST(ReactionsRequest, AModelSolvesThemOnlyWhileAsked) {
-  const ModelFactory factory = simulation_model_factory();
+  const RunFactory factory = live_run_factory();
   for (const std::string name : {"slider_crank.toml", "four_bar.toml"}) {
     auto model = factory.build(factory.load(kScenes + name, {}));
     for (int k = 0; k < 200; ++k) model->step();
@@ -44,7 +44,7 @@ bool wait_for_step(const SimWorker& worker, long step) {
 
 TEST(ReactionsRequest, TheSimulationThreadPublishesThemOnlyWhileAsked) {
   EventLog events(false);
-  SimWorker worker(simulation_model_factory(), kScenes + "slider_crank.toml", {}, events);
+  SimWorker worker(live_run_factory(), kScenes + "slider_crank.toml", {}, events);
   worker.start(false, 0.0);
   worker.send(SimCommand{command::Reactions{true}, "test"});
   worker.send(SimCommand{command::Step{3}, "test"});

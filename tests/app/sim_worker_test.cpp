@@ -28,7 +28,7 @@ struct FakeLog {
   long saves = 0, restores = 0;   // of the whole state (the history)
 };
 
-class FakeModel final : public SteppedModel {
+class FakeModel final : public SteppedRun {
  public:
   FakeModel(FakeLog& log, double dt, double end_time, long fail_at_step)
       : log_(log), end_time_(end_time), fail_at_step_(fail_at_step) {
@@ -101,8 +101,8 @@ class FakeModel final : public SteppedModel {
 };
 
 // Scenes are named by path; "bad.toml" fails to load as a malformed file would.
-ModelFactory fake_factory(FakeLog& log, double dt, double end_time = 1e9, long fail_at_step = -1) {
-  ModelFactory f;
+RunFactory fake_factory(FakeLog& log, double dt, double end_time = 1e9, long fail_at_step = -1) {
+  RunFactory f;
   f.load = [](const std::string& path, const std::vector<std::string>&) {
     if (path == "bad.toml") throw InputError({path, 3, 1, "bodies.crank.mass"}, "mass must be positive");
     SceneDef s;
@@ -110,7 +110,7 @@ ModelFactory fake_factory(FakeLog& log, double dt, double end_time = 1e9, long f
     s.path = path;
     return s;
   };
-  f.build = [&log, dt, end_time, fail_at_step](const SceneDef&) -> std::unique_ptr<SteppedModel> {
+  f.build = [&log, dt, end_time, fail_at_step](const SceneDef&) -> std::unique_ptr<SteppedRun> {
     return std::make_unique<FakeModel>(log, dt, end_time, fail_at_step);
   };
   return f;

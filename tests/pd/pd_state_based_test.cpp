@@ -97,7 +97,7 @@ TEST(PdStateBased, WideAndCompiledLoopsFindTheSameLargestStretch) {
   def.notches.push_back({Vec2(0.0, -0.007), Vec2(0.0, 0.0)});
   auto body = PdBody::build(def, 0);
   const BondStore& bonds = body->bonds();
-  StateBasedModel model;
+  LpsFields model;
   model.volume = body->volumes().at(0);
   model.kappa = 1e11;
   model.mu = 7e10;

@@ -14,10 +14,10 @@ namespace periflex {
 
 namespace {
 
-class SimulationModel final : public SteppedModel {
+class LiveRun final : public SteppedRun {
  public:
   // the state after initialisation is kept: a reset restores it instead of building again
-  explicit SimulationModel(const SceneDef& scene) : sim_(scene) {
+  explicit LiveRun(const SceneDef& scene) : sim_(scene) {
     sim_.initialize();
     sim_.save_state(start_);
   }
@@ -66,8 +66,8 @@ class SimulationModel final : public SteppedModel {
 
 }  // namespace
 
-ModelFactory simulation_model_factory() {
-  ModelFactory f;
+RunFactory live_run_factory() {
+  RunFactory f;
   // a scene picked or reloaded in the window meets the limits the command line enforces, before
   // anything is built: a file edited to a million particles is refused, not allocated
   f.load = [](const std::string& path, const std::vector<std::string>& overrides) {
@@ -75,8 +75,8 @@ ModelFactory simulation_model_factory() {
     check_scene_budget(scene);
     return scene;
   };
-  f.build = [](const SceneDef& scene) -> std::unique_ptr<SteppedModel> {
-    return std::make_unique<SimulationModel>(scene);
+  f.build = [](const SceneDef& scene) -> std::unique_ptr<SteppedRun> {
+    return std::make_unique<LiveRun>(scene);
   };
   // the simulation thread's team leaves one core to drawing, unless OMP_NUM_THREADS says otherwise
   f.started = [] {

@@ -17,8 +17,8 @@ using namespace std::chrono_literals;
 
 const std::string kData = PERIFLEX_TEST_DATA;
 
-TEST(SimulationModel, LoaderRefusesASceneOverItsLimits) {
-  const ModelFactory factory = simulation_model_factory();
+TEST(LiveRun, LoaderRefusesASceneOverItsLimits) {
+  const RunFactory factory = live_run_factory();
   try {
     factory.load(kData + "/scenes/app/plate_over_particle_limit.toml", {});
     FAIL() << "a scene of 400 particles with max_particles = 50 was loaded";
@@ -27,10 +27,10 @@ TEST(SimulationModel, LoaderRefusesASceneOverItsLimits) {
   }
 }
 
-TEST(SimulationModel, SwitchingToASceneOverItsLimitsKeepsTheCurrentOne) {
+TEST(LiveRun, SwitchingToASceneOverItsLimitsKeepsTheCurrentOne) {
   EventLog events(false);
   const std::string start = kData + "/scenes/run/falling_body.toml";
-  SimWorker worker(simulation_model_factory(), start, {}, events);
+  SimWorker worker(live_run_factory(), start, {}, events);
   worker.start(false, 1.0);
   SimCommand load{command::LoadScene{kData + "/scenes/app/plate_over_particle_limit.toml"}, "test"};
   worker.send(load);
@@ -47,13 +47,13 @@ TEST(SimulationModel, SwitchingToASceneOverItsLimitsKeepsTheCurrentOne) {
 
 // Reset in the window puts back the state the model started in (the model is not built again):
 // a cracked plate reset and run again repeats its first run bit for bit, cracks included.
-TEST(SimulationModel, ResetRestoresTheStartAndRepeatsTheRun) {
-  const ModelFactory factory = simulation_model_factory();
+TEST(LiveRun, ResetRestoresTheStartAndRepeatsTheRun) {
+  const RunFactory factory = live_run_factory();
   SceneDef scene = factory.load(std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/notched_plate.toml", {});
   // one solver thread: the ThreadSanitizer build runs this label, and OpenMP's own threads
   // (libgomp is not instrumented) would show as races that are not the program's
   scene.solver.threads = 1;
-  std::unique_ptr<SteppedModel> model = factory.build(scene);
+  std::unique_ptr<SteppedRun> model = factory.build(scene);
   const long steps = 1750;  // the crack runs from about step 1600
   Snapshot first, again, fresh;
   for (long k = 0; k < steps; ++k) model->step();
@@ -67,7 +67,7 @@ TEST(SimulationModel, ResetRestoresTheStartAndRepeatsTheRun) {
   EXPECT_EQ(start.broken_bonds, 0);
   for (long k = 0; k < steps; ++k) model->step();
   model->fill_snapshot(again);
-  std::unique_ptr<SteppedModel> built = factory.build(scene);
+  std::unique_ptr<SteppedRun> built = factory.build(scene);
   for (long k = 0; k < steps; ++k) built->step();
   built->fill_snapshot(fresh);
   for (const Snapshot* other : {&again, &fresh}) {
@@ -84,10 +84,10 @@ TEST(SimulationModel, ResetRestoresTheStartAndRepeatsTheRun) {
 // notched plate cracked, taken back to a state before the crack (kept at a cadence that does not
 // divide dt), resumed and stepped to the same instant, has the same particles, damage and series
 // row as the first time.
-TEST(SimulationModel, ScrubbingBackAndResumingRepeatsTheRun) {
+TEST(LiveRun, ScrubbingBackAndResumingRepeatsTheRun) {
   EventLog events(false);
   // one solver thread, as above
-  SimWorker worker(simulation_model_factory(), std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/notched_plate.toml",
+  SimWorker worker(live_run_factory(), std::string(PERIFLEX_SOURCE_ROOT) + "/scenes/notched_plate.toml",
                    {"solver.threads=1"}, events);
   worker.start(false, 0.0);
   const auto wait = [&worker](const std::function<bool(const WorkerStatus&)>& done) {

@@ -22,7 +22,7 @@ namespace {
 // k (1/|xi| - 1/|y|) y = k s y/|y|: one square root and one division per bond, no branch
 // (a broken bond has k = 0). With kTrack the largest stretch over the row's intact bonds
 // (at most 0 when none) goes to most[i] as a by-product.
-template <bool kTrack>
+template <bool kTrack, bool kOwn>
 void elastic_rows(int begin, int end, const Rows& r, const double* __restrict pos, double* __restrict force,
                   double* __restrict most, const RowCut* cut) {
   for (int i = begin; i < end; ++i) {
@@ -33,7 +33,7 @@ void elastic_rows(int begin, int end, const Rows& r, const double* __restrict po
       const int32_t j = r.nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
       const double len = std::sqrt(dx * dx + dy * dy);
-      const double l0 = ref_inv_length(r, b), k = r.k[b];
+      const double l0 = kOwn ? r.own[b] : r.l0[r.cls[b]], k = r.k[b];
       const double f = k * (l0 - 1.0 / len);
       fx += f * dx;
       fy += f * dy;
@@ -53,7 +53,7 @@ void elastic_rows(int begin, int end, const Rows& r, const double* __restrict po
 }
 
 // as elastic_rows, plus k eta/E ds/dt with ds/dt = e . (v_j - v_i) / |xi|, along e
-template <bool kTrack>
+template <bool kTrack, bool kOwn>
 void damped_rows(int begin, int end, const Rows& r, const double* __restrict pos, const double* __restrict vel,
                  double eta_over_e, double* __restrict force, double* __restrict most, const RowCut* cut) {
   for (int i = begin; i < end; ++i) {
@@ -67,7 +67,7 @@ void damped_rows(int begin, int end, const Rows& r, const double* __restrict pos
       const double dvx = vel[2 * j] - vxi, dvy = vel[2 * j + 1] - vyi;
       const double len = std::sqrt(dx * dx + dy * dy);
       const double inv_len = 1.0 / len;
-      const double l0 = ref_inv_length(r, b), k = r.k[b];
+      const double l0 = kOwn ? r.own[b] : r.l0[r.cls[b]], k = r.k[b];
       const double rate = (dx * dvx + dy * dvy) * inv_len * l0;
       const double f = k * ((l0 - inv_len) + eta_over_e * rate * inv_len);
       fx += f * dx;
@@ -88,6 +88,7 @@ void damped_rows(int begin, int end, const Rows& r, const double* __restrict pos
 }
 
 // largest stretch over the intact bonds (k > 0) of each row; -1 for a row without any
+template <bool kOwn>
 void row_max_stretch(int begin, int end, const Rows& r, const double* __restrict pos, double* __restrict out) {
   for (int i = begin; i < end; ++i) {
     const double xi = pos[2 * i], yi = pos[2 * i + 1];
@@ -96,7 +97,7 @@ void row_max_stretch(int begin, int end, const Rows& r, const double* __restrict
     for (int64_t b = r.row[i]; b < r.row[i + 1]; ++b) {
       const int32_t j = r.nbr[b];
       const double dx = pos[2 * j] - xi, dy = pos[2 * j + 1] - yi;
-      const double s = std::sqrt(dx * dx + dy * dy) * ref_inv_length(r, b) - 1.0;
+      const double s = std::sqrt(dx * dx + dy * dy) * (kOwn ? r.own[b] : r.l0[r.cls[b]]) - 1.0;
       most = std::max(most, r.k[b] > 0.0f ? s : -1.0);
     }
     out[i] = most;
@@ -142,8 +143,23 @@ void row_maxima(const BondStore& bonds, const double* pos, double* out) {
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
     if (which == Isa::kAvx512) return row_max_stretch_avx512(begin, end, r, pos, out);
 #endif
-    row_max_stretch(begin, end, r, pos, out);
+    if (r.own)
+      row_max_stretch<true>(begin, end, r, pos, out);
+    else
+      row_max_stretch<false>(begin, end, r, pos, out);
   });
+}
+
+// Rows [begin, end) of the portable elastic (vel null) or damped force loop.
+template <bool kOwn>
+void portable_rows(int begin, int end, bool track, const Rows& r, const double* pos, const double* vel,
+                   double eta_over_e, double* force, double* row_max, const RowCut* cut) {
+  if (vel) {
+    if (track) return damped_rows<true, kOwn>(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
+    return damped_rows<false, kOwn>(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
+  }
+  if (track) return elastic_rows<true, kOwn>(begin, end, r, pos, force, row_max, cut);
+  elastic_rows<false, kOwn>(begin, end, r, pos, force, row_max, cut);
 }
 
 // Rows [begin, end) of the elastic (vel null) or damped force loop the CPU runs best.
@@ -161,12 +177,8 @@ void force_rows(int begin, int end, Isa which, const Rows& r, const double* pos,
   (void)which;
 #endif
   const bool track = row_max || cut;
-  if (vel) {
-    if (track) return damped_rows<true>(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
-    return damped_rows<false>(begin, end, r, pos, vel, eta_over_e, force, row_max, cut);
-  }
-  if (track) return elastic_rows<true>(begin, end, r, pos, force, row_max, cut);
-  elastic_rows<false>(begin, end, r, pos, force, row_max, cut);
+  if (r.own) return portable_rows<true>(begin, end, track, r, pos, vel, eta_over_e, force, row_max, cut);
+  portable_rows<false>(begin, end, track, r, pos, vel, eta_over_e, force, row_max, cut);
 }
 
 // The whole force loop, chunk by chunk on the threads; pos_copy receives pos chunk by chunk.

@@ -23,9 +23,12 @@ __attribute__((target("avx2"))) inline __m256d gather(const double* base, __m128
   return _mm256_mask_i32gather_pd(_mm256_setzero_pd(), base, idx, all, 8);
 }
 
-// 1/|xi| of bonds b .. b+3 from the class table (or their own, off the grid)
+// 1/|xi| of bonds b .. b+3 from the class table, or with kOwn (a body off the grid) their own.
+// The choice is a template argument, not a test in the loop: a branch there let GCC chain the
+// gathers as above and halved the speed of the elastic loop.
+template <bool kOwn>
 __attribute__((target("avx2"))) inline __m256d table_lengths(const Rows& r, int64_t b) {
-  if (r.own) return _mm256_loadu_pd(r.own + b);
+  if constexpr (kOwn) return _mm256_loadu_pd(r.own + b);
   int32_t four;
   std::memcpy(&four, r.cls + b, sizeof(four));
   return gather(r.l0, _mm_cvtepu8_epi32(_mm_cvtsi32_si128(four)));
@@ -51,7 +54,7 @@ __attribute__((target("avx2"))) inline double lane_max(__m256d v) {
   return std::max(std::max(lanes[0], lanes[1]), std::max(lanes[2], lanes[3]));
 }
 
-template <bool kTrack>
+template <bool kTrack, bool kOwn>
 __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows& r,
                                                        const double* __restrict pos, double* __restrict force,
                                                        double* __restrict most, const RowCut* cut) {
@@ -66,7 +69,7 @@ __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows
       const __m256d dx = _mm256_sub_pd(gather(pos, twice_j), vxi);
       const __m256d dy = _mm256_sub_pd(gather(pos + 1, twice_j), vyi);
       const __m256d len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
-      const __m256d l0 = table_lengths(r, b), kb = _mm256_cvtps_pd(_mm_loadu_ps(r.k + b));
+      const __m256d l0 = table_lengths<kOwn>(r, b), kb = _mm256_cvtps_pd(_mm_loadu_ps(r.k + b));
       const __m256d f = _mm256_mul_pd(kb, _mm256_sub_pd(l0, _mm256_div_pd(one, len)));
       ax = _mm256_add_pd(ax, _mm256_mul_pd(f, dx));
       ay = _mm256_add_pd(ay, _mm256_mul_pd(f, dy));
@@ -78,7 +81,7 @@ __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows
       const int32_t j = r.nbr[b];
       const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
       const double len = std::sqrt(dx * dx + dy * dy);
-      const double l0 = ref_inv_length(r, b), k = r.k[b];
+      const double l0 = kOwn ? r.own[b] : r.l0[r.cls[b]], k = r.k[b];
       const double f = k * (l0 - 1.0 / len);
       fx += f * dx;
       fy += f * dy;
@@ -97,7 +100,7 @@ __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows
   }
 }
 
-template <bool kTrack>
+template <bool kTrack, bool kOwn>
 __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows& r,
                                                       const double* __restrict pos, const double* __restrict vel,
                                                       double eta_over_e, double* __restrict force,
@@ -118,7 +121,7 @@ __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows&
       const __m256d dvy = _mm256_sub_pd(gather(vel + 1, twice_j), qyi);
       const __m256d len = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
       const __m256d inv_len = _mm256_div_pd(one, len);
-      const __m256d l0 = table_lengths(r, b), kb = _mm256_cvtps_pd(_mm_loadu_ps(r.k + b));
+      const __m256d l0 = table_lengths<kOwn>(r, b), kb = _mm256_cvtps_pd(_mm_loadu_ps(r.k + b));
       const __m256d dot = _mm256_add_pd(_mm256_mul_pd(dx, dvx), _mm256_mul_pd(dy, dvy));
       const __m256d rate = _mm256_mul_pd(_mm256_mul_pd(dot, inv_len), l0);
       const __m256d f = _mm256_mul_pd(
@@ -134,7 +137,7 @@ __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows&
       const double dvx = vel[2 * j] - vxi, dvy = vel[2 * j + 1] - vyi;
       const double len = std::sqrt(dx * dx + dy * dy);
       const double inv_len = 1.0 / len;
-      const double l0 = ref_inv_length(r, b), k = r.k[b];
+      const double l0 = kOwn ? r.own[b] : r.l0[r.cls[b]], k = r.k[b];
       const double rate = (dx * dvx + dy * dvy) * inv_len * l0;
       const double f = k * ((l0 - inv_len) + eta_over_e * rate * inv_len);
       fx += f * dx;
@@ -158,18 +161,24 @@ __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows&
 
 void elastic_rows_avx2(int begin, int end, const Rows& r, const double* pos, double* force, double* most,
                        const RowCut* cut) {
-  if (most || cut)
-    elastic_avx2<true>(begin, end, r, pos, force, most, cut);
+  const bool track = most || cut;
+  if (r.own)
+    track ? elastic_avx2<true, true>(begin, end, r, pos, force, most, cut)
+          : elastic_avx2<false, true>(begin, end, r, pos, force, most, cut);
   else
-    elastic_avx2<false>(begin, end, r, pos, force, most, cut);
+    track ? elastic_avx2<true, false>(begin, end, r, pos, force, most, cut)
+          : elastic_avx2<false, false>(begin, end, r, pos, force, most, cut);
 }
 
 void damped_rows_avx2(int begin, int end, const Rows& r, const double* pos, const double* vel, double eta_over_e,
                       double* force, double* most, const RowCut* cut) {
-  if (most || cut)
-    damped_avx2<true>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
+  const bool track = most || cut;
+  if (r.own)
+    track ? damped_avx2<true, true>(begin, end, r, pos, vel, eta_over_e, force, most, cut)
+          : damped_avx2<false, true>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
   else
-    damped_avx2<false>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
+    track ? damped_avx2<true, false>(begin, end, r, pos, vel, eta_over_e, force, most, cut)
+          : damped_avx2<false, false>(begin, end, r, pos, vel, eta_over_e, force, most, cut);
 }
 
 }  // namespace periflex

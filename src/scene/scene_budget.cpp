@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "core/sim_time.h"
+#include "scene/cloud_lattice.h"
 #include "scene/grid_scan.h"
 #include "scene/integrator_catalogue.h"
 #include "scene/toml_reader.h"
@@ -52,20 +53,38 @@ SourceLocation size_key(const SceneDef& scene, const FlexBodyDef& flex) {
 // near an edge with a fraction of an interior particle's neighbours, is counted as it is.
 struct BodyCount {
   double particles = 0.0, neighbours = 0.0;
+  bool off_grid = false;  // bonds keep their own lengths (kBytesPerNeighborOffGrid more each)
 };
 
-// A body of particles given one by one: its count, and as neighbours the grid offsets within
-// the reach for every particle (an upper bound: an interior particle's count).
-BodyCount count_cloud(const FlexBodyDef& flex) {
-  BodyCount count;
-  count.particles = static_cast<double>(flex.particles->size());
-  const double reach = flex.horizon_ratio + (flex.partial_volume_correction ? 0.5 : 0.0);
+// Neighbours within `reach` spacings of a particle: the grid offsets in that disc (on the grid),
+// or its area (off it, where the points are as dense on average but not on whole offsets).
+double neighbours_per_particle(double reach, bool on_grid) {
   const long r = static_cast<long>(std::ceil(reach)) + 1;
   double offsets = 0.0;
   for (long b = -r; b <= r; ++b)
     for (long a = -r; a <= r; ++a)
       if (!(a == 0 && b == 0) && double(a * a + b * b) <= reach * reach * (1 + 1e-9)) offsets += 1.0;
-  count.neighbours = count.particles * offsets;
+  return on_grid ? offsets : std::max(offsets, kPi * reach * reach);
+}
+
+// A body of particles given one by one: its count, and as neighbours an interior particle's count
+// for every particle (an upper bound on the grid). Where a graded file gives volumes of their own,
+// a particle of volume V sees about cell / V times as many (its neighbourhood is as finely
+// divided as it is).
+BodyCount count_cloud(const FlexBodyDef& flex) {
+  BodyCount count;
+  const ParticleCloud& cloud = *flex.particles;
+  count.particles = static_cast<double>(cloud.size());
+  const double reach = flex.horizon_ratio + (flex.partial_volume_correction ? 0.5 : 0.0);
+  const CloudLattice lattice = place_on_lattice(cloud, flex.grid_spacing, flex.thickness, cloud.source);
+  count.off_grid = !lattice.on_grid || flex.jitter > 0.0;
+  const double per_particle = neighbours_per_particle(reach, !count.off_grid);
+  if (lattice.cell_volumes) {
+    count.neighbours = count.particles * per_particle;
+    return count;
+  }
+  const double cell = flex.grid_spacing * flex.grid_spacing * flex.thickness;
+  for (long k = 0; k < cloud.size(); ++k) count.neighbours += per_particle * std::max(1.0, cell / cloud.volume[k]);
   return count;
 }
 
@@ -202,14 +221,21 @@ void check_particles(const SceneDef& scene, SceneBudget& budget) {
                                                  "more than limits.max_grid_rows = " + format_count(l.max_grid_rows) +
                                                  "; raise grid_spacing or simplify the shape");
     // the exact count, by the scan that fills the grid
-    const BodyCount count = count_particles_and_neighbours(flex, frame);
+    BodyCount count = count_particles_and_neighbours(flex, frame);
+    // a jittered shape: its particles as dense as on the grid, its neighbours not on whole offsets
+    if (!flex.particles && flex.jitter > 0.0) {
+      const double reach = flex.horizon_ratio + (flex.partial_volume_correction ? 0.5 : 0.0);
+      count.neighbours *= neighbours_per_particle(reach, false) / neighbours_per_particle(reach, true);
+      count.off_grid = true;
+    }
     const double particles = count.particles;
     budget.particles += particles;
     budget.bonds += count.neighbours / 2;
     const std::string& integrator = scene.solver.integrator;
     body_memory.push_back(particles * (kBytesPerParticle + integrator_bytes_per_particle(integrator)) +
-                          count.neighbours * (kBytesPerNeighbor + iteration_matrices(scene.solver) *
-                                                                      integrator_bytes_per_neighbor(integrator)));
+                          count.neighbours * (kBytesPerNeighbor + (count.off_grid ? kBytesPerNeighborOffGrid : 0.0) +
+                                              iteration_matrices(scene.solver) *
+                                                  integrator_bytes_per_neighbor(integrator)));
     budget.memory += body_memory.back();
     if (!(budget.particles <= l.max_particles))
       refuse(flex_key(scene, flex, "grid_spacing"),

@@ -48,6 +48,8 @@ struct SceneBudget {
 constexpr double kProgramBytes = 12e6;
 constexpr double kBytesPerParticle = 64.0;
 constexpr double kBytesPerNeighbor = 30.0;
+// A body off the grid keeps each stored neighbour's own 1 / |xi| and partial volume (pd/bond_store.h).
+constexpr double kBytesPerNeighborOffGrid = 16.0;
 // Stage vectors of an integrator, per particle, and the implicit integrators' tangent, per stored
 // neighbour, from the integrator catalogue (0 for a name it lacks).
 double integrator_bytes_per_particle(const std::string& integrator);

@@ -54,10 +54,35 @@ struct MemoryCase {
 // program's.
 constexpr bool kUnderSanitizer = PERIFLEX_UNDER_SANITIZER;
 
+// A graded point file of the glass plate's size: spacing 5e-4 on its left half, 2.5e-4 (a quarter
+// of the volume) on its right half, 50,000 points; and a scene reading it. Returns the scene.
+std::string graded_plate_scene(const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  std::FILE* points = std::fopen((dir / "graded.csv").c_str(), "w");
+  const double dx = 5e-4, t = 1e-3;
+  for (int j = 0; j < 80; ++j)
+    for (int i = 0; i < 100; ++i) std::fprintf(points, "%.17g,%.17g,%.17g\n", (i - 99.5) * dx, (j - 39.5) * dx, dx * dx * t);
+  for (int j = 0; j < 160; ++j)
+    for (int i = 0; i < 200; ++i)
+      std::fprintf(points, "%.17g,%.17g,%.17g\n", (i + 0.5) * 0.5 * dx, (j - 79.5) * 0.5 * dx, 0.25 * dx * dx * t);
+  std::fclose(points);
+  std::FILE* scene = std::fopen((dir / "graded.toml").c_str(), "w");
+  std::fprintf(scene, "[solver]\nintegrator = \"verlet\"\ndt = 2e-8\nend_time = 1e-6\n[[flex_body]]\nname = \"plate\"\n"
+                      "shape = { type = \"points\", file = \"graded.csv\" }\ngrid_spacing = 5e-4\nthickness = 1e-3\n"
+                      "[flex_body.material]\nyoungs_modulus = 72e9\ndensity = 2440\nfracture_energy = 3.8\n");
+  std::fclose(scene);
+  return (dir / "graded.toml").string();
+}
+
 TEST(SceneBudget, MemoryEstimateIsWithinOneAndAHalfOfThePeakOfTheRun) {
   if (kUnderSanitizer) GTEST_SKIP() << "peak memory under a sanitizer is not the program's";
   const std::string root = PERIFLEX_SOURCE_ROOT;
+  const std::string graded =
+      graded_plate_scene(std::filesystem::temp_directory_path() / ("periflex_budget_graded_" + std::to_string(::getpid())));
   const std::vector<MemoryCase> cases = {
+      // bodies off the grid: each bond keeps its own length and partial volume
+      {root + "/scenes/glass_branching.toml", "verlet", 2e-7, {"flex_body.plate.jitter=0.3"}},
+      {graded, "verlet", 1e-7},
       {root + "/scenes/notched_plate.toml", "verlet", 4e-6},
       {root + "/scenes/notched_plate.toml", "hht", 4e-6},
       // steps of 3e-6 s cut at every output (1e-5 s): the matrices of two step sizes

@@ -164,6 +164,7 @@ void read_file_shape_at(TableReader& in, const std::string& path, const std::str
   }
   remove_holes(cloud, flex.holes);
   if (cloud.size() == 0) in.fail("file", "every point of '" + path + "' lies in a hole");
+  // refused here, naming the file's line: coincident points, volumes far from the grid cell's
   place_on_lattice(cloud, flex.grid_spacing, flex.thickness, path);
   flex.shape = bounding_box(cloud, flex.grid_spacing);
   flex.geometry_source = cloud.source;

@@ -1,7 +1,7 @@
 // A flexible body's geometry from a file: `shape = { type = "points" | "image" | "dxf", file = ... }`
 // (docs/scenes.md, "Shapes from files"). The file's path is relative to the scene file.
 //
-//   points  the particles themselves (scene/point_file_reader.h), placed on the body's grid
+//   points  the particles themselves (scene/point_file_reader.h), on the body's grid or off it
 //   image   pixels darker than a threshold are material, sampled at the grid spacing
 //           (scene/image_shape.h)
 //   dxf     closed outlines: the outer loop material, the inner loops holes (scene/dxf_shape.h)

@@ -26,8 +26,9 @@ const FlexBodyDef* cpu_only_body(const SceneDef& scene, std::string& why) {
       return &def;
     }
     // the GPU's bonds read their lengths from the grid's length classes
-    if (def.jitter > 0.0 || (def.particles && !place_on_lattice(*def.particles, def.grid_spacing, def.thickness,
-                                                                 def.particles->source).on_grid)) {
+    const bool cloud_off_grid =
+        def.particles && !cloud_nodes(*def.particles, def.grid_spacing, def.thickness, def.particles->source).on_grid;
+    if (def.jitter > 0.0 || cloud_off_grid) {
       why = "has particles off the grid (jitter or a point file's layout), which only the CPU runs";
       return &def;
     }

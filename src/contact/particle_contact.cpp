@@ -88,10 +88,18 @@ double ParticleContact::pair_distance(int a, int b, double d) const {
 void ParticleContact::find_bonds() const {
   const int n = static_cast<int>(coordinate_.size());
   candidate_bond_.assign(candidates_.col.size(), -1);
+  candidate_distance_.clear();
   if (static_cast<int>(candidates_.row.size()) != n + 1) return;  // no list yet
   for (int a = 0; a < n; ++a) {
     for (int64_t e = candidates_.row[a]; e < candidates_.row[a + 1]; ++e)
       candidate_bond_[e] = bond_between(a, candidates_.col[e]);
+  }
+  // each pair's own contact distance, kept only where some body lies off the grid
+  if (std::find(off_grid_.begin(), off_grid_.end(), 1) == off_grid_.end()) return;
+  candidate_distance_.resize(candidates_.col.size());
+  for (int a = 0; a < n; ++a) {
+    for (int64_t e = candidates_.row[a]; e < candidates_.row[a + 1]; ++e)
+      candidate_distance_[e] = pair_distance(a, candidates_.col[e], distance_);
   }
 }
 
@@ -145,7 +153,7 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
         const int b = candidates_.col[e], xb = coordinate_[b];
         const double dx = q[xb] - q[xa], dy = q[xb + 1] - q[xa + 1];
         const double r2 = dx * dx + dy * dy;
-        const double reach = pair_distance(a, b, d);
+        const double reach = candidate_distance_.empty() ? d : candidate_distance_[e];
         if (r2 >= reach * reach || r2 == 0.0) continue;
         const double r = std::sqrt(r2), overlap = reach - r;
         // out of b towards a; the velocity of a relative to b

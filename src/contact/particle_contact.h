@@ -58,7 +58,7 @@ class ParticleContact final : public ContactElement {
   // The bond (broken or not) joining particles a and b (global numbering) in their body's
   // store, the copy in the lower particle's row; -1 when none does.
   int64_t bond_between(int a, int b) const;
-  // candidate_bond_ for the candidate list.
+  // candidate_bond_ (and candidate_distance_) for the candidate list.
   void find_bonds() const;
   // The contact distance of particles a and b: d, except within one body off the grid, where two
   // particles may start closer than d: at most distance_ratio times their reference distance
@@ -81,6 +81,7 @@ class ParticleContact final : public ContactElement {
   // the Verlet list and the state it was built at
   mutable NeighborList candidates_;
   mutable std::vector<int64_t> candidate_bond_;  // per candidate: bond_between, -1 if none
+  mutable std::vector<double> candidate_distance_;  // per candidate: pair_distance; empty: all distance_
   mutable std::vector<double> built_at_;  // x, y per particle
   mutable long rebuilds_ = 0;
   mutable std::vector<double> x_, y_;

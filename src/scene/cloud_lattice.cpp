@@ -15,13 +15,15 @@ namespace {
   throw InputError(SourceLocation{file, static_cast<int>(line), 0, "shape.file"}, message);
 }
 
+// The file line point k came from (0: not from a line).
+long line_of(const ParticleCloud& cloud, long k) { return k < static_cast<long>(cloud.line.size()) ? cloud.line[k] : 0L; }
+
 }  // namespace
 
-CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thickness, const std::string& file) {
+CloudLattice cloud_nodes(const ParticleCloud& cloud, double dx, double thickness, const std::string& file) {
   CloudLattice lattice;
   const long n = cloud.size();
   if (n == 0) return lattice;
-  const auto line_of = [&](long k) { return k < static_cast<long>(cloud.line.size()) ? cloud.line[k] : 0L; };
   lattice.origin = Vec2(*std::min_element(cloud.x.begin(), cloud.x.end()), *std::min_element(cloud.y.begin(), cloud.y.end()));
   const double span = std::max(*std::max_element(cloud.x.begin(), cloud.x.end()) - lattice.origin.x(),
                                *std::max_element(cloud.y.begin(), cloud.y.end()) - lattice.origin.y());
@@ -40,7 +42,7 @@ CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thic
     if (!(off <= kLatticeTolerance)) lattice.on_grid = false;
     if (!(std::abs(cloud.volume[k] - volume) <= kVolumeTolerance * volume)) lattice.cell_volumes = false;
     if (!(cloud.volume[k] <= kVolumeRange * volume && cloud.volume[k] >= volume / kVolumeRange))
-      fail_at(file, line_of(k), "volume " + format_number(cloud.volume[k]) + " m^3 is " +
+      fail_at(file, line_of(cloud, k), "volume " + format_number(cloud.volume[k]) + " m^3 is " +
                                     format_number(cloud.volume[k] / volume) + " times grid_spacing^2 x thickness = " +
                                     format_number(volume) + " m^3; a particle's volume must lie within " +
                                     format_number(1.0 / kVolumeRange) + " and " + format_number(kVolumeRange) +
@@ -48,7 +50,12 @@ CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thic
     lattice.ix[k] = static_cast<int32_t>(rx);
     lattice.iy[k] = static_cast<int32_t>(ry);
   }
+  return lattice;
+}
 
+CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thickness, const std::string& file) {
+  CloudLattice lattice = cloud_nodes(cloud, dx, thickness, file);
+  const long n = cloud.size();
   // two points on one node (on the grid), or closer than the tolerance (off it), would be one
   // particle counted twice: the points sorted by node (nodes are >= 0, below 2^31), each compared
   // with the earlier points of its own node and, off the grid, of the eight around it
@@ -78,9 +85,9 @@ CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thic
     }
   }
   if (worst_b >= 0)
-    fail_at(file, line_of(worst_b),
+    fail_at(file, line_of(cloud, worst_b),
             "the point (" + format_number(cloud.x[worst_b]) + ", " + format_number(cloud.y[worst_b]) +
-                ") coincides with the point of line " + std::to_string(line_of(worst_a)) +
+                ") coincides with the point of line " + std::to_string(line_of(cloud, worst_a)) +
                 (lattice.on_grid ? " (the same grid node at spacing " + format_number(dx) + ")"
                                  : " (closer than " + format_number(kLatticeTolerance) + " grid spacings)"));
   return lattice;

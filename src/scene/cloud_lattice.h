@@ -38,4 +38,8 @@ constexpr double kVolumeRange = 1e3;
 // kVolumeRange of dx^2 thickness.
 CloudLattice place_on_lattice(const ParticleCloud& cloud, double dx, double thickness, const std::string& file);
 
+// As place_on_lattice without the search for coincident points (one pass, no sort): what the
+// budget and the device check ask of a cloud the scene reader has already placed.
+CloudLattice cloud_nodes(const ParticleCloud& cloud, double dx, double thickness, const std::string& file);
+
 }  // namespace periflex

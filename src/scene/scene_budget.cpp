@@ -76,7 +76,7 @@ BodyCount count_cloud(const FlexBodyDef& flex) {
   const ParticleCloud& cloud = *flex.particles;
   count.particles = static_cast<double>(cloud.size());
   const double reach = flex.horizon_ratio + (flex.partial_volume_correction ? 0.5 : 0.0);
-  const CloudLattice lattice = place_on_lattice(cloud, flex.grid_spacing, flex.thickness, cloud.source);
+  const CloudLattice lattice = cloud_nodes(cloud, flex.grid_spacing, flex.thickness, cloud.source);
   count.off_grid = !lattice.on_grid || flex.jitter > 0.0;
   const double per_particle = neighbours_per_particle(reach, !count.off_grid);
   if (lattice.cell_volumes) {

@@ -3,7 +3,6 @@
 // the grid body they tend to, against themselves (equal and opposite pairs, no force at rest, the
 // vector loops against the portable ones, threads) and against Kirsch's stress concentration.
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <cmath>
 #include <cstdio>
@@ -151,19 +150,12 @@ TEST(OffGrid, TearingBreaksBothCopiesAndIsBitIdenticalOnOneAndTwoThreads) {
   std::vector<Eigen::VectorXd> positions;
   std::vector<std::vector<uint8_t>> broken;
   long pairs = 0;
-  const int saved = omp_get_max_threads();
   for (int threads : {1, 2}) {
-    omp_set_num_threads(threads);
-    auto body = PdBody::build(def, 0);
-    test::VerletLoop loop(*body);
-    const std::vector<double>& x = body->reference_positions();
-    for (int i = 0; i < body->particle_count(); ++i) loop.qd()[2 * i] = x[2 * i] > 0.0 ? 1.0 : -1.0;
-    const double dt = 0.4 * body->critical_time_step();
-    for (int k = 0; k < 80; ++k) loop.step(dt, true);
-    positions.push_back(loop.q());
-    broken.push_back(body->bonds().broken);
-    pairs = body->broken_bond_count();
-    const std::vector<int64_t> reverse = reverse_bonds(body->bonds());
+    const test::TornPlate torn = test::tear_plate(def, threads);
+    positions.push_back(torn.q);
+    broken.push_back(torn.body->bonds().broken);
+    pairs = torn.body->broken_bond_count();
+    const std::vector<int64_t> reverse = reverse_bonds(torn.body->bonds());
     long directed = 0;
     for (size_t k = 0; k < reverse.size(); ++k) {
       directed += broken.back()[k] != 0;
@@ -171,7 +163,6 @@ TEST(OffGrid, TearingBreaksBothCopiesAndIsBitIdenticalOnOneAndTwoThreads) {
     }
     EXPECT_EQ(directed, 2 * pairs);
   }
-  omp_set_num_threads(saved);
   std::printf("jittered tearing plate: %ld bonds broken\n", pairs);
   EXPECT_GT(pairs, 100);
   EXPECT_EQ(broken[0], broken[1]);

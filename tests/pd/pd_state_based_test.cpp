@@ -348,20 +348,12 @@ TEST(PdStateBased, TearingRunIsBitIdenticalOnOneAndTwoThreads) {
   std::vector<Eigen::VectorXd> positions;
   std::vector<std::vector<uint8_t>> broken;
   std::vector<long> counts;
-  const int saved = omp_get_max_threads();
   for (int threads : {1, 2}) {
-    omp_set_num_threads(threads);
-    auto body = PdBody::build(def, 0);
-    test::VerletLoop loop(*body);
-    const std::vector<double>& x = body->reference_positions();
-    for (int i = 0; i < body->particle_count(); ++i) loop.qd()[2 * i] = x[2 * i] > 0.0 ? 1.0 : -1.0;
-    const double dt = 0.4 * body->critical_time_step();
-    for (int k = 0; k < 80; ++k) loop.step(dt, true);
-    positions.push_back(loop.q());
-    broken.push_back(body->bonds().broken);
-    counts.push_back(body->broken_bond_count());
+    const test::TornPlate torn = test::tear_plate(def, threads);
+    positions.push_back(torn.q);
+    broken.push_back(torn.body->bonds().broken);
+    counts.push_back(torn.body->broken_bond_count());
   }
-  omp_set_num_threads(saved);
   std::printf("state-based tearing plate: %ld bonds broken\n", counts[0]);
   EXPECT_GT(counts[0], 100);
   EXPECT_EQ(counts[0], counts[1]);

@@ -48,15 +48,8 @@ constexpr double kMostExceptions = 1e-3;
 
 using test::box;
 using test::circle;
+using test::combined;
 using Clock = std::chrono::steady_clock;
-
-ShapeDef combined(ShapeDef::Combine how, std::vector<ShapeDef> operands) {
-  ShapeDef s;
-  s.kind = ShapeDef::Kind::kBoolean;
-  s.combine = how;
-  s.operands = std::move(operands);
-  return s;
-}
 
 ShapeDef polygon(std::vector<Vec2> vertices) {
   ShapeDef s;

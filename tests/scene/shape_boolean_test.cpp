@@ -13,14 +13,7 @@ namespace {
 
 using test::box;
 using test::circle;
-
-ShapeDef combine(ShapeDef::Combine how, std::vector<ShapeDef> operands) {
-  ShapeDef s;
-  s.kind = ShapeDef::Kind::kBoolean;
-  s.combine = how;
-  s.operands = std::move(operands);
-  return s;
-}
+using test::combined;
 
 std::vector<std::pair<long, long>> scanned(const ShapeDef& shape, const GridFrame& frame) {
   std::vector<std::pair<long, long>> cells;
@@ -43,13 +36,13 @@ TEST(ShapeBoolean, ScanVisitsExactlyTheCellsTheInsideTestAccepts) {
   const ShapeDef disc = circle({0.1, 0.05}, 0.2);
   const ShapeDef tilted = box({-0.3, -0.2}, 0.3, 0.1, 0.7);
   const std::vector<ShapeDef> cases = {
-      combine(ShapeDef::Combine::kUnion, {disc, tilted, circle({0.9, 0.9}, 0.1)}),
-      combine(ShapeDef::Combine::kDifference, {plate, disc, tilted}),
-      combine(ShapeDef::Combine::kIntersection, {plate, circle({0.4, 0.2}, 0.35)}),
+      combined(ShapeDef::Combine::kUnion, {disc, tilted, circle({0.9, 0.9}, 0.1)}),
+      combined(ShapeDef::Combine::kDifference, {plate, disc, tilted}),
+      combined(ShapeDef::Combine::kIntersection, {plate, circle({0.4, 0.2}, 0.35)}),
       // nested: (plate minus disc) united with a ring made of a difference
-      combine(ShapeDef::Combine::kUnion, {combine(ShapeDef::Combine::kDifference, {plate, disc}),
-                                          combine(ShapeDef::Combine::kDifference,
-                                                  {circle({1.0, 0}, 0.3), circle({1.0, 0}, 0.2)})})};
+      combined(ShapeDef::Combine::kUnion, {combined(ShapeDef::Combine::kDifference, {plate, disc}),
+                                           combined(ShapeDef::Combine::kDifference,
+                                                    {circle({1.0, 0}, 0.3), circle({1.0, 0}, 0.2)})})};
   for (size_t k = 0; k < cases.size(); ++k) {
     const ShapeDef& s = cases[k];
     for (double dx : {0.013, 0.05}) {
@@ -65,12 +58,12 @@ TEST(ShapeBoolean, ScanVisitsExactlyTheCellsTheInsideTestAccepts) {
 
 // The bounds cover every cell inside, so a combined body's grid frame loses none.
 TEST(ShapeBoolean, BoundsCoverTheShape) {
-  const ShapeDef u = combine(ShapeDef::Combine::kUnion, {circle({-1, 0}, 0.5), circle({2, 1}, 0.25)});
+  const ShapeDef u = combined(ShapeDef::Combine::kUnion, {circle({-1, 0}, 0.5), circle({2, 1}, 0.25)});
   Vec2 lo, hi;
   shape_bounds(u, lo, hi);
   EXPECT_EQ(lo, Vec2(-1.5, -0.5));
   EXPECT_EQ(hi, Vec2(2.25, 1.25));
-  const ShapeDef i = combine(ShapeDef::Combine::kIntersection, {box({0, 0}, 2, 2), box({1, 1}, 2, 2)});
+  const ShapeDef i = combined(ShapeDef::Combine::kIntersection, {box({0, 0}, 2, 2), box({1, 1}, 2, 2)});
   shape_bounds(i, lo, hi);
   EXPECT_EQ(lo, Vec2(0, 0));
   EXPECT_EQ(hi, Vec2(1, 1));

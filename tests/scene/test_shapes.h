@@ -1,5 +1,8 @@
-// Shapes for the scene tests, built in code: a box, a circle.
+// Shapes for the scene tests, built in code: a box, a circle, a combination of shapes.
 #pragma once
+
+#include <utility>
+#include <vector>
 
 #include "scene/scene_def.h"
 
@@ -20,6 +23,15 @@ inline ShapeDef circle(Vec2 c, double r) {
   s.kind = ShapeDef::Kind::kCircle;
   s.center = c;
   s.radius = r;
+  return s;
+}
+
+// `how` of the operands (union, difference: the first minus the others, intersection).
+inline ShapeDef combined(ShapeDef::Combine how, std::vector<ShapeDef> operands) {
+  ShapeDef s;
+  s.kind = ShapeDef::Kind::kBoolean;
+  s.combine = how;
+  s.operands = std::move(operands);
   return s;
 }
 

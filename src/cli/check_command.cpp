@@ -58,6 +58,10 @@ int check_command(const std::string& scene_path, const std::vector<std::string>&
       std::printf("  %-22s'%s': %s, %s, poisson_ratio = %s\n", "peridynamic model", flex.name.c_str(),
                   mat.model == PdMaterialDef::Model::kBilinearSoftening ? "bond-based, bilinear softening" : "bond-based",
                   plane, mat.plane_strain ? "1/4" : "1/3");
+    // the blocks of its point file that carry materials of their own
+    for (const BlockMaterialDef& block : flex.block_materials)
+      std::printf("  %-22s'%s': block %ld, youngs_modulus = %g Pa, density = %g kg/m^3\n", "block material",
+                  flex.name.c_str(), block.block, block.youngs_modulus, block.density);
     // where the body's geometry came from, and the box its particles fill
     Vec2 lo, hi;
     shape_bounds(flex.shape, lo, hi);

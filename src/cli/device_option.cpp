@@ -32,6 +32,10 @@ const FlexBodyDef* cpu_only_body(const SceneDef& scene, std::string& why) {
       why = "has particles off the grid (jitter or a point file's layout), which only the CPU runs";
       return &def;
     }
+    if (!def.block_materials.empty()) {
+      why = "has materials by block (flex_body.block_material), which only the CPU runs";
+      return &def;
+    }
   }
   return nullptr;
 }

@@ -87,6 +87,8 @@ GlBondForceDevice::~GlBondForceDevice() {
 void GlBondForceDevice::upload(const BondStore& bonds, const uint8_t* no_fail, const double* reference) {
   EglContext::Scope current(context_->egl());
   if (bonds.own_lengths()) throw DeviceError("the GPU path reads bond lengths from the grid; this body's particles are off it");
+  if (bonds.own_break_stretches())
+    throw DeviceError("the GPU path breaks every bond at one critical stretch; this body has materials by block");
   const int n = bonds.particle_count();
   int slots = 0;
   for (int i = 0; i < n; ++i) slots = std::max<int>(slots, static_cast<int>(bonds.row[i + 1] - bonds.row[i]));

@@ -54,7 +54,8 @@ void set_bond_stiffness(const LawSetup& setup, BondStore& bonds) {
           wx += 0.25 * k0[b] / bonds.inv_length(b) * sx * sx;
           wy += 0.25 * k0[b] / bonds.inv_length(b) * sy * sy;
         }
-        const double vi = setup.volumes ? setup.volumes[i] : v;
+        // the continuum's energy in the particle's own material (materials by block)
+        const double vi = (setup.volumes ? setup.volumes[i] : v) * (setup.modulus_ratio ? setup.modulus_ratio[i] : 1.0);
         if (wx > 0.0) gx[i] = w_cont * vi / wx;
         if (wy > 0.0) gy[i] = w_cont * vi / wy;
       }

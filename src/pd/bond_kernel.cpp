@@ -42,7 +42,7 @@ void elastic_rows(int begin, int end, const Rows& r, const double* __restrict po
     if constexpr (kTrack) {
       if (most) most[i] = top;
       // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
-      if (cut && top > cut->s0 - kCutSlack) {
+      if (cut && top > row_threshold(r, *cut, i) - kCutSlack) {
         fx = fy = 0.0;
         cut_row_forces(i, r, *cut, pos, nullptr, 0.0, fx, fy);
       }
@@ -77,7 +77,7 @@ void damped_rows(int begin, int end, const Rows& r, const double* __restrict pos
     if constexpr (kTrack) {
       if (most) most[i] = top;
       // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
-      if (cut && top > cut->s0 - kCutSlack) {
+      if (cut && top > row_threshold(r, *cut, i) - kCutSlack) {
         fx = fy = 0.0;
         cut_row_forces(i, r, *cut, pos, vel, eta_over_e, fx, fy);
       }
@@ -124,9 +124,12 @@ Isa isa() {
 #endif
 }
 
-// The row loops for these bonds: the AVX-512 ones read the class table from registers, so a body
-// off the grid (its own length per bond) takes the AVX2 ones at most.
-Isa isa(const BondStore& bonds) { return bonds.own_lengths() ? std::min(isa(), Isa::kAvx2) : isa(); }
+// The row loops for these bonds: the AVX-512 ones read the class table from registers and test
+// every row against one s0, so a body off the grid (its own length per bond) or of several
+// materials (its own s0 per particle) takes the AVX2 ones at most.
+Isa isa(const BondStore& bonds) {
+  return bonds.own_lengths() || bonds.own_break_stretches() ? std::min(isa(), Isa::kAvx2) : isa();
+}
 
 // the stretch of bond b of particle i, computed the same way for both of its copies
 inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t b) {
@@ -204,7 +207,7 @@ void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, 
     const double len = std::sqrt(dx * dx + dy * dy);
     const double l0 = ref_inv_length(r, b), k = r.k[b];
     // the exact stretch, as stretch() below: the same bits in both copies of the bond
-    if (k > 0.0 && !fixed && !(cut.no_fail && cut.no_fail[j]) && len * l0 - 1.0 > cut.s0) {
+    if (k > 0.0 && !fixed && !(cut.no_fail && cut.no_fail[j]) && len * l0 - 1.0 > bond_threshold(r, cut, i, j)) {
       cut.broken[b] = 2;
       left_out = true;
       continue;
@@ -336,11 +339,11 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
   }
   const double* most = row_max ? row_max : computed.data();
   for (int i = 0; i < n; ++i) {
-    if (most[i] <= s0 - kCutSlack || (no_fail && no_fail[i])) continue;
+    if (most[i] <= bonds.row_break_stretch(i, s0) - kCutSlack || (no_fail && no_fail[i])) continue;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
       if (bonds.broken[b] || (no_fail && no_fail[bonds.neighbor[b]])) continue;
       const double s = stretch(bonds, pos, i, b);
-      if (s > s0) {
+      if (s > bonds.break_stretch(i, b, s0)) {
         energy += 0.25 * double(bonds.stiffness[b]) * s * s / bonds.inv_length(b);
         bonds.broken_stiffness.emplace_back(b, bonds.stiffness[b]);
         bonds.broken[b] = 1;

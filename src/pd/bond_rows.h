@@ -24,6 +24,8 @@ struct Rows {
   int classes;           // entries of l0
   const float* k;        // stiffness, 0 once broken
   const double* own;     // 1 / |xi| of each bond of a body off the grid (BondStore::bond_inv_length), or null
+  const double* ps0;     // critical stretch of each particle (materials by block), or null: RowCut::s0
+  const double* rs0;     // each row's smallest bond threshold (BondStore::row_s0), or null
 };
 
 // 1 / |xi| of bond b
@@ -33,7 +35,9 @@ inline Rows rows_of(const BondStore& b) {
   return {b.row.data(), b.neighbor.data(), b.neighbor_offset.empty() ? nullptr : b.neighbor_offset.data(),
           b.length_class.data(), b.inv_length_table.data(),
           static_cast<int>(b.inv_length_table.size()), b.stiffness.data(),
-          b.own_lengths() ? b.bond_inv_length.data() : nullptr};
+          b.own_lengths() ? b.bond_inv_length.data() : nullptr,
+          b.own_break_stretches() ? b.particle_s0.data() : nullptr,
+          b.own_break_stretches() ? b.row_s0.data() : nullptr};
 }
 
 // Bonds past the critical stretch inside a force loop. A row whose largest intact stretch (as the
@@ -46,6 +50,12 @@ struct RowCut {
   uint8_t* broken;         // a bond left out is marked 2 (broken, not yet settled)
   uint8_t* row_broke;      // set to 1 for a row that left a bond out
 };
+
+// The stretch below which no bond of row i breaks, and the one past which bond b (to j) does.
+inline double row_threshold(const Rows& r, const RowCut& cut, int i) { return r.rs0 ? r.rs0[i] : cut.s0; }
+inline double bond_threshold(const Rows& r, const RowCut& cut, int i, int32_t j) {
+  return r.ps0 ? (r.ps0[i] < r.ps0[j] ? r.ps0[i] : r.ps0[j]) : cut.s0;
+}
 
 // The row maxima of the vector loops may differ from the exact stretch by a few units in the
 // last place (their 1/|y| is a refined estimate); rows within this much of s0 are walked exactly.

@@ -96,7 +96,7 @@ __attribute__((target("avx2"))) void elastic_avx2(int begin, int end, const Rows
     if constexpr (kTrack) {
       if (most) most[i] = top;
       // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
-      if (cut && top > cut->s0 - kCutSlack) {
+      if (cut && top > row_threshold(r, *cut, i) - kCutSlack) {
         fx = fy = 0.0;
         cut_row_forces(i, r, *cut, pos, nullptr, 0.0, fx, fy);
       }
@@ -153,7 +153,7 @@ __attribute__((target("avx2"))) void damped_avx2(int begin, int end, const Rows&
     if constexpr (kTrack) {
       if (most) most[i] = top;
       // a row near or past s0 (rare: at a crack tip) is summed again without the bonds that break
-      if (cut && top > cut->s0 - kCutSlack) {
+      if (cut && top > row_threshold(r, *cut, i) - kCutSlack) {
         fx = fy = 0.0;
         cut_row_forces(i, r, *cut, pos, vel, eta_over_e, fx, fy);
       }

@@ -14,6 +14,7 @@
 // (bond_inv_length, 8 bytes more a direction), the same bits in both copies.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -35,6 +36,9 @@ struct BondStore {
   double grid_spacing = 1.0;
   std::vector<double> inv_length_table;  // 1 / |xi| per length class (index = di^2 + dj^2)
   std::vector<double> bond_inv_length;   // 1 / |xi| of each stored direction off the grid; empty on it
+  // materials by block (pd/block_materials.h): each particle's critical stretch (a bond breaks past
+  // the smaller of its ends') and each row's smallest bond threshold; both empty: one s0 for all
+  std::vector<double> particle_s0, row_s0;
 
   int particle_count() const { return row.empty() ? 0 : static_cast<int>(row.size() - 1); }
   int64_t directed_count() const { return static_cast<int64_t>(neighbor.size()); }
@@ -44,6 +48,14 @@ struct BondStore {
   double inv_length(int64_t b) const {
     return own_lengths() ? bond_inv_length[b] : inv_length_table[length_class[b]];
   }
+  // true when the critical stretch differs from particle to particle
+  bool own_break_stretches() const { return !particle_s0.empty(); }
+  // The critical stretch of stored direction b from particle i (s0 when there is one for all).
+  double break_stretch(int i, int64_t b, double s0) const {
+    return own_break_stretches() ? std::min(particle_s0[i], particle_s0[neighbor[b]]) : s0;
+  }
+  // The stretch below which no bond of row i breaks.
+  double row_break_stretch(int i, double s0) const { return own_break_stretches() ? row_s0[i] : s0; }
   // Fills inv_length_table for every class up to the largest stored one.
   void make_length_table() {
     uint8_t largest = 0;
@@ -70,6 +82,7 @@ struct BondStore {
            stiffness.capacity() * sizeof(float) +
            broken.capacity() * sizeof(uint8_t) + inv_length_table.capacity() * sizeof(double) +
            bond_inv_length.capacity() * sizeof(double) +
+           (particle_s0.capacity() + row_s0.capacity()) * sizeof(double) +
            broken_stiffness.capacity() * sizeof(std::pair<int64_t, float>);
   }
 };

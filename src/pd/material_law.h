@@ -37,6 +37,7 @@ struct LawSetup {
   const std::vector<double>& k0;   // c w beta V^2 per stored direction (before any correction)
   const std::vector<double>& nx2;  // squared x-component of each stored direction's unit vector
   const uint8_t* no_fail = nullptr;  // 1: bonds at this particle never break; null when none is
+  const double* modulus_ratio = nullptr;  // E_i / E of each particle (materials by block); null: all 1
 };
 
 // One force evaluation: positions and velocities of the body's particles (interleaved), the

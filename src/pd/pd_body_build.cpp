@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/parallel_chunks.h"
+#include "pd/block_materials.h"
 #include "pd/cloud_grid.h"
 #include "pd/neighbor_search.h"
 #include "pd/pd_body_impl.h"
@@ -65,7 +66,7 @@ class PartialVolumes {
 // Rows are judged and filled on the team's threads in two passes (which candidates stay, then
 // their values at their places after a prefix sum of the counts): each row's bonds come out in
 // the same order as one thread would make them, so the bonds are the same bits on any count.
-void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& nx2) {
+void make_bonds(PdBody::Impl& m, const ParticleMaterials& materials, std::vector<double>& k0, std::vector<double>& nx2) {
   const FlexBodyDef& def = m.def;
   const PartialVolumes volume_fraction(def);
   BondStore& bonds = m.bonds;
@@ -158,6 +159,8 @@ void make_bonds(PdBody::Impl& m, std::vector<double>& k0, std::vector<double>& n
         }
         // V_i V_j as one product: the same bits in both directions
         k0[at] = graded ? m.c * o.w * o.beta * (m.volume[i] * m.volume[j]) : m.c * o.w * o.beta * v * v;
+        // materials by block: the bond's two halves in series
+        if (!materials.empty()) k0[at] *= series_modulus(materials.modulus_ratio[i], materials.modulus_ratio[j]);
         nx2[at] = o.di * o.di / o.r2;
         ++at;
       }
@@ -321,13 +324,24 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   m->fracture = def.fracture;
   m->law = make_material_law(def, m->delta, v, m->warnings);
   m->s0 = m->law->critical_stretch();
+  // materials by block: each particle's density and critical stretch (the body's s0 the smallest)
+  const ParticleMaterials materials = particle_materials(def, n, m->delta, m->s0);
+  if (!materials.empty()) {
+    require(def.material.model == PdMaterialDef::Model::kBondBased, "material.model",
+            "materials by block need the bond-based law");
+    for (int i = 0; i < n; ++i) m->mass[i] = materials.density[i] * m->volume[i];
+    m->s0 = *std::min_element(materials.critical_stretch.begin(), materials.critical_stretch.end());
+  }
 
   // no-fail flags, bonds, the law's coefficients, loads
   m->no_fail = body_no_fail(def, m->grid);
   std::vector<double> k0, nx2;
-  make_bonds(*m, k0, nx2);
+  make_bonds(*m, materials, k0, nx2);
   const double* volumes = m->grid.volume.empty() ? nullptr : m->volume.data();
-  m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, volumes, k0, nx2, m->no_fail_flags()}, m->bonds);
+  const double* moduli = materials.empty() ? nullptr : materials.modulus_ratio.data();
+  m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, volumes, k0, nx2, m->no_fail_flags(), moduli},
+                           m->bonds);
+  set_break_stretches(materials, m->bonds);
   collect_loads(*m);
 
   m->bond_damping = def.bond_damping;

@@ -2,6 +2,7 @@
 // state-based, fracture by energy or stretch, softening) and the loads on regions of it.
 #include "scene/scene_table_reader.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "scene/file_shape_reader.h"
@@ -91,6 +92,20 @@ FlexBodyDef SceneTableReader::read_flex_body(const toml::table& table, size_t in
   const toml::table* material = in.optional_table("material");
   if (material == nullptr) in.fail_missing("material", "a [flex_body.material] table");
   flex.material = read_material(*material, in.key_path("material"), flex.fracture);
+  // other materials by block, each block of the point file once
+  if (const toml::node* blocks = in.node("block_material")) {
+    const auto* array = blocks->as_array();
+    if (array == nullptr)
+      context_.fail(blocks, in.key_path("block_material"),
+                    "expected [[flex_body.block_material]] tables, found " + describe_type(*blocks));
+    for (size_t k = 0; k < array->size(); ++k) {
+      const toml::node* element = array->get(k);
+      const std::string path = in.key_path("block_material") + "." + std::to_string(k);
+      if (!element->is_table())
+        context_.fail(element, path, "expected [[flex_body.block_material]] tables, found " + describe_type(*element));
+      flex.block_materials.push_back(read_block_material(*element->as_table(), path, flex));
+    }
+  }
 
   // loads and boundary conditions
   const toml::node* loads = in.node("load");
@@ -168,6 +183,41 @@ PdMaterialDef SceneTableReader::read_material(const toml::table& table, const st
               " cannot be represented (remove poisson_ratio or change plane)");
     m.poisson_ratio = *nu;
   }
+  in.finish();
+  return m;
+}
+
+BlockMaterialDef SceneTableReader::read_block_material(const toml::table& table, const std::string& path,
+                                                      const FlexBodyDef& flex) {
+  TableReader in(context_, table, path, "[[flex_body.block_material]]");
+  BlockMaterialDef m;
+  m.where = in.where();
+  m.block = in.integer("block", -1, 0);
+  if (m.block < 0) in.fail_missing("block", "the block of the point file these constants are for");
+  // a block needs a point file whose fourth column names blocks, all of them in this body
+  const ParticleCloud* cloud = flex.particles.get();
+  if (cloud == nullptr || cloud->block.empty())
+    in.fail("block", "materials by block need a shape of type \"points\" whose file has a block column (x, y, volume, block)");
+  if (std::find(cloud->block.begin(), cloud->block.end(), m.block) == cloud->block.end())
+    in.fail("block", "no point of " + cloud->source + " in this body is in block " + std::to_string(m.block));
+  for (const BlockMaterialDef& other : flex.block_materials)
+    if (other.block == m.block) in.fail("block", "block " + std::to_string(m.block) + " already has a material");
+  // one law for the whole body: only its constants change from block to block
+  if (flex.material.model != PdMaterialDef::Model::kBondBased)
+    in.fail("block", "materials by block need the body's material.model = \"bond_based\"");
+  m.youngs_modulus = in.required_number("youngs_modulus", Sign::kPositive);
+  m.density = in.required_number("density", Sign::kPositive);
+  check_range(in, "youngs_modulus", m.youngs_modulus, 1e-3, 1e13, "Pa");
+  check_range(in, "density", m.density, 1e-3, 1e6, "kg/m^3");
+  const auto energy = in.optional_number("fracture_energy", Sign::kPositive);
+  const auto stretch = in.optional_number("critical_stretch", Sign::kPositive);
+  if (energy && stretch) in.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
+  if (flex.fracture && !energy && !stretch)
+    in.fail_missing("fracture_energy", "or critical_stretch; or set fracture = false in the flexible body");
+  if (energy) check_range(in, "fracture_energy", *energy, 1e-12, 1e8, "J/m^2");
+  if (stretch) check_range(in, "critical_stretch", *stretch, 1e-12, 10.0, "");
+  m.fracture_energy = energy.value_or(0.0);
+  m.critical_stretch = stretch.value_or(0.0);
   in.finish();
   return m;
 }

@@ -146,6 +146,9 @@ ParticleCloud read_point_file(const std::string& path, const PointFileOptions& o
     cloud.volume.push_back(v[2] * scale3);
     cloud.no_fail.push_back(v[4] != 0.0 ? 1 : 0);
     cloud.line.push_back(line);
+    // a block column on some rows only leaves those without it in no block (-1)
+    if (f.size() >= 4 && cloud.block.size() + 1 < cloud.x.size()) cloud.block.assign(cloud.x.size() - 1, -1);
+    if (f.size() >= 4 || !cloud.block.empty()) cloud.block.push_back(f.size() >= 4 ? static_cast<long>(v[3]) : -1);
   }
   if (cloud.size() == 0)
     fail_at(path, 0, options.block >= 0 ? "has no point in block " + std::to_string(options.block) : std::string("has no point"));

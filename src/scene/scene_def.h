@@ -157,6 +157,19 @@ struct PdMaterialDef {
   double poisson_ratio = -1.0;
 };
 
+// The material of one block of a point file's body (the file's fourth column): the particles of
+// that block take these constants instead of the body's; the law, the plane and the damping stay
+// the body's. A bond between two materials is as stiff as its two halves in series and breaks at
+// the smaller of its ends' critical stretches (docs/scenes.md, "Materials by block").
+struct BlockMaterialDef {
+  long block = 0;
+  double youngs_modulus = 0.0;   // E [Pa]
+  double density = 0.0;          // rho [kg/m^3]
+  double fracture_energy = 0.0;  // G0 [J/m^2]; used when critical_stretch is not given
+  double critical_stretch = 0.0; // s0; > 0 overrides fracture_energy
+  SourceLocation where;
+};
+
 // A segment cutting every bond that crosses it at set-up.
 struct NotchDef {
   Vec2 p1 = Vec2::Zero(), p2 = Vec2::Zero();
@@ -197,6 +210,7 @@ struct FlexBodyDef {
   double jitter = 0.0;
   uint64_t jitter_seed = 1;
   PdMaterialDef material;
+  std::vector<BlockMaterialDef> block_materials;  // other materials by block; empty: one material
   enum class Influence { kConstant, kConical } influence = Influence::kConstant;
   bool partial_volume_correction = true;
   bool surface_correction = true;

@@ -96,6 +96,9 @@ class SceneTableReader {
 
   PdMaterialDef read_material(const toml::table& table, const std::string& path, bool fracture);
 
+  // [[flex_body.block_material]]: the material of one block of the body's point file
+  BlockMaterialDef read_block_material(const toml::table& table, const std::string& path, const FlexBodyDef& flex);
+
   RegionLoadDef read_load(const toml::table& table, size_t index, const std::string& flex_name,
                           std::map<std::string, int>& names);
 

@@ -71,6 +71,15 @@ TEST(PointFileReader, BlockKeepsOnlyItsPoints) {
   EXPECT_NE(message.find("no point in block 7"), std::string::npos) << message;
 }
 
+// Each point's block is kept for materials by block; rows without the column are in no block (-1),
+// and a file without the column keeps none.
+TEST(PointFileReader, BlockColumnIsKeptForEachPoint) {
+  const ParticleCloud c = read_point_file(write_file("kept.csv", "0,0,1\n1,0,1,2\n2,0,1,0\n"), {});
+  EXPECT_EQ(c.block, (std::vector<long>{-1, 2, 0}));
+  EXPECT_EQ(read_point_file(write_file("first.csv", "0,0,1,3\n1,0,1\n2,0,1,4\n"), {}).block, (std::vector<long>{3, -1, 4}));
+  EXPECT_TRUE(read_point_file(write_file("none.csv", "0,0,1\n1,0,1\n"), {}).block.empty());
+}
+
 TEST(PointFileReader, BadRowsNameTheirLine) {
   std::string message;
   EXPECT_EQ(error_line(write_file("cols.csv", "0,0,1\n0,1\n"), {}, &message), 2);

@@ -101,6 +101,41 @@ TEST(SpecimenFiles, JitteredPlateWrittenAndReadBackRunsBitForBit) {
   EXPECT_GT(series(dir / "a" / "series.csv").at("broken_bonds").back(), 0.0);
 }
 
+// A body of two materials from one point file (tests/data/scenes/run/bimaterial_points.toml: PMMA
+// bonded to aluminium, block by block): it runs to its end and cracks; written out with
+// --points-out (which keeps its blocks) and read back with the same block materials, it runs as
+// the same bytes of series.csv; without its block material (all PMMA) the run differs. `check`
+// names each block's material, and the GPU path refuses the body before anything runs.
+TEST(SpecimenFiles, MaterialsByBlockWrittenAndReadBackRunBitForBit) {
+  const auto dir = testing::fresh_directory("specimen_blocks");
+  const std::string scene_file = std::string(PERIFLEX_TEST_DATA) + "/scenes/run/bimaterial_points.toml";
+  const std::string points = (dir / "blocks.csv").string();
+  const auto original = run_periflex("run " + scene_file + " --quiet --out " + (dir / "a").string() + " --points-out " + points);
+  ASSERT_EQ(original.exit_code, 0) << original.output;
+  std::string text = read_text(scene_file);
+  const std::string from = "file = \"bimaterial_points.csv\", unit = \"mm\"";
+  ASSERT_NE(text.find(from), std::string::npos);
+  text.replace(text.find(from), from.size(), "file = \"" + points + "\"");
+  std::ofstream(dir / "back.toml") << text;
+  const auto back = run_periflex("run " + (dir / "back.toml").string() + " --quiet --out " + (dir / "b").string());
+  ASSERT_EQ(back.exit_code, 0) << back.output;
+  EXPECT_EQ(read_text(dir / "a" / "series.csv"), read_text(dir / "b" / "series.csv"));
+  EXPECT_GT(series(dir / "a" / "series.csv").at("broken_bonds").back(), 0.0);
+  // the same strip all PMMA: another run
+  std::ofstream(dir / "one.toml") << text.substr(0, text.find("\n[[flex_body.block_material]]")) + "\n" +
+                                         text.substr(text.find("\n[[flex_body.load]]"));
+  const auto one = run_periflex("run " + (dir / "one.toml").string() + " --quiet --out " + (dir / "c").string());
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  EXPECT_NE(read_text(dir / "a" / "series.csv"), read_text(dir / "c" / "series.csv"));
+  const auto check = run_periflex("check " + scene_file);
+  EXPECT_NE(check.output.find("'strip': block 1, youngs_modulus = 7e+10 Pa, density = 2700 kg/m^3"), std::string::npos)
+      << check.output;
+  const auto gpu = run_periflex("run " + scene_file + " --quiet --device gpu --out " + (dir / "d").string());
+  EXPECT_EQ(gpu.exit_code, 2) << gpu.output;
+  EXPECT_NE(gpu.output.find("'strip' has materials by block"), std::string::npos) << gpu.output;
+  EXPECT_FALSE(std::filesystem::exists(dir / "d" / "series.csv"));
+}
+
 // Particles of `a` that `b` lacks, all within one grid spacing of the hole's rim (radius 6 mm).
 void expect_same_but_at_rim(const ParticleCloud& a, const ParticleCloud& b, const std::string& what) {
   std::set<std::pair<long, long>> in_b;

@@ -311,9 +311,6 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
     m->volume.assign(n, v);
     m->mass.assign(n, mat.density * v);
   } else {
-    require(def.material.model != PdMaterialDef::Model::kStateBased, "material.model",
-            "the state-based law needs every particle's volume to be grid_spacing^2 x thickness; the points of " +
-                (def.particles ? def.particles->source : std::string("the body")) + " have volumes of their own");
     m->volume = m->grid.volume;
     m->mass.resize(n);
     for (int i = 0; i < n; ++i) m->mass[i] = mat.density * m->volume[i];

@@ -204,7 +204,7 @@ void refresh_weighted_volumes(const BondStore& bonds, LpsFields& lps, const std:
       sum += double(bonds.stiffness[b]) * x0 * x0;
     }
     lps.weighted_volume[i] = lps.volume * sum;
-    lps.shear_coef[i] = sum > 0.0 ? 8.0 * lps.shear_modulus[i] / lps.weighted_volume[i] : 0.0;
+    lps.shear_coef[i] = sum > 0.0 ? 8.0 * lps.shear_modulus[i] * lps.ratio(i) / lps.weighted_volume[i] : 0.0;
   }
 }
 
@@ -247,7 +247,7 @@ void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double
       for (int i = begin; i < end; ++i) {
         const double m = lps.weighted_volume[i];
         lps.dilatation[i] = m > 0.0 ? 2.0 * lps.volume * lps.dilatation[i] / m : 0.0;
-        lps.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * lps.dilatation[i] / m : 0.0;
+        lps.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * lps.dilatation[i] * lps.ratio(i) / m : 0.0;
         double* record = lps.records.data() + 4 * static_cast<int64_t>(i);
         record[0] = pos[2 * i];
         record[1] = pos[2 * i + 1];
@@ -269,7 +269,7 @@ void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double
                      pos, lps.dilatation.data(), row_max);
     for (int i = begin; i < end; ++i) {
       const double m = lps.weighted_volume[i];
-      lps.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * lps.dilatation[i] / m : 0.0;
+      lps.bulk_coef[i] = m > 0.0 ? (twice_kappa - 4.0 * mu[i]) * lps.dilatation[i] * lps.ratio(i) / m : 0.0;
     }
   });
   // pass 2: pair forces, which need a_j of every neighbour, so only after pass 1 has finished
@@ -292,7 +292,7 @@ double state_based_strain_energy(const BondStore& bonds, const LpsFields& lps, c
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     energy_rows(static_cast<int>(begin), static_cast<int>(end), bonds, lps, pos, density.data());
     double sum = 0.0;
-    for (int64_t i = begin; i < end; ++i) sum += density[i];
+    for (int64_t i = begin; i < end; ++i) sum += density[i] * lps.ratio(static_cast<int>(i));
     return lps.volume * sum;
   });
 }
@@ -303,7 +303,7 @@ double state_based_rows_energy(const BondStore& bonds, const LpsFields& lps, con
   std::vector<double> density(bonds.particle_count());
   for (int i : particles) {
     energy_rows(i, i + 1, bonds, lps, pos, density.data());
-    sum += density[i];
+    sum += density[i] * lps.ratio(i);
   }
   return lps.volume * sum;
 }
@@ -334,7 +334,7 @@ double state_based_critical_time_step(const BondStore& bonds, const LpsFields& l
   std::vector<double> ratio(bonds.particle_count(), 0.0);
   for (int i = 0; i < bonds.particle_count(); ++i)
     if (lps.weighted_volume[i] > 0.0)
-      ratio[i] = std::max(2.0 * lps.kappa, 4.0 * lps.shear_modulus[i]) / lps.weighted_volume[i];
+      ratio[i] = std::max(2.0 * lps.kappa, 4.0 * lps.shear_modulus[i]) * lps.ratio(i) / lps.weighted_volume[i];
   const double v2 = lps.volume * lps.volume;
   double dt = std::numeric_limits<double>::infinity();
   for (int i = 0; i < bonds.particle_count(); ++i) {

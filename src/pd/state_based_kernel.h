@@ -20,11 +20,18 @@ namespace periflex {
 // The LPS law's constants and its per-particle fields (what the bond loops read and write besides
 // the bonds): the law owns one (state_based_law.h).
 struct LpsFields {
-  double volume = 0.0;                   // V of every particle [m^3] (thickness included)
+  double volume = 0.0;                   // V of the grid cell [m^3] (thickness included)
+  // r_i = V_i / V of each particle of a graded point file (empty: every particle has V). The bond
+  // weights then hold w beta r_i r_j (the same bits both ways), so that the sums over a row weigh
+  // each neighbour by its volume; weighted_volume holds V sum w beta r_i r_j |xi|^2 = r_i m_i, with
+  // which the dilatation comes out exact, and the coefficients below take m_i = weighted_volume / r_i.
+  std::vector<double> volume_ratio;
   double kappa = 0.0, mu = 0.0;          // 2D bulk and shear moduli [Pa]
   std::vector<double> shear_modulus;     // mu_i: mu times the surface correction's factor (empty: mu)
-  std::vector<double> weighted_volume;   // m_i = V sum_j w beta |xi|^2 over intact bonds [m^5]
+  std::vector<double> weighted_volume;   // m_i = V sum_j w beta |xi|^2 over intact bonds [m^5] (r_i m_i graded)
   std::vector<double> shear_coef;        // b_i = 8 mu_i / m_i (0 without intact bonds)
+  // r_i (1 on the grid)
+  double ratio(int i) const { return volume_ratio.empty() ? 1.0 : volume_ratio[i]; }
   std::vector<double> bulk_coef;         // a_i of the last force evaluation (scratch)
   std::vector<double> dilatation;        // theta_i of the last dilatation pass (scratch)
   std::vector<double> records;           // [x_0 y_0 a_0 b_0 x_1 ...] (scratch): a neighbour in one 32-byte load

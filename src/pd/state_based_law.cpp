@@ -38,6 +38,10 @@ void StateBasedLaw::set_coefficients(const LawSetup& setup, BondStore& bonds) {
   std::vector<double> weight(k0.size());
   for (size_t b = 0; b < k0.size(); ++b) weight[b] = k0[b] / (c * v * v);
   lps_.shear_modulus.assign(n, lps_.mu);
+  // a graded point file: the weights w beta r_i r_j follow from k0 = c w beta V_i V_j
+  lps_.volume_ratio.clear();
+  if (setup.volumes)
+    for (int i = 0; i < n; ++i) lps_.volume_ratio.push_back(setup.volumes[i] / v);
   if (setup.def.surface_correction) {
     // reference unit vectors from the integer grid offsets (off the grid: from the positions)
     const ParticleGrid& grid = setup.grid;
@@ -134,6 +138,7 @@ void StateBasedLaw::restore(const FlexState& in) {
 
 size_t StateBasedLaw::memory_bytes() const {
   return (lps_.weighted_volume.capacity() + lps_.shear_coef.capacity() + lps_.shear_modulus.capacity() +
+          lps_.volume_ratio.capacity() +
           lps_.bulk_coef.capacity() + lps_.dilatation.capacity() + lps_.records.capacity()) *
          sizeof(double);
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "scene/file_shape_reader.h"
 #include "scene/function_reader.h"
@@ -20,6 +21,29 @@ using Kind = ShapeDef::Kind;
 const std::set<std::string> kLoadKeys = {"name", "type", "region", "fx", "fy"};
 
 }  // namespace
+
+// Young's modulus and density of a material table (the body's or a block's), each in its
+// physically meaningful range: beyond them the critical step under- or overflows.
+void SceneTableReader::read_modulus_and_density(TableReader& in, double& youngs_modulus, double& density) {
+  youngs_modulus = in.required_number("youngs_modulus", Sign::kPositive);
+  density = in.required_number("density", Sign::kPositive);
+  check_range(in, "youngs_modulus", youngs_modulus, 1e-3, 1e13, "Pa");
+  check_range(in, "density", density, 1e-3, 1e6, "kg/m^3");
+}
+
+// The fracture criterion of a material table: fracture_energy or critical_stretch (both only where
+// the law takes both), one of them while fracture is on, each in its range.
+SceneTableReader::FractureKeys SceneTableReader::read_fracture_keys(TableReader& in, bool fracture, bool both_allowed) {
+  FractureKeys keys{in.optional_number("fracture_energy", Sign::kPositive),
+                    in.optional_number("critical_stretch", Sign::kPositive)};
+  if (keys.energy && keys.stretch && !both_allowed)
+    in.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
+  if (fracture && !keys.energy && !keys.stretch)
+    in.fail_missing("fracture_energy", "or critical_stretch; or set fracture = false in the flexible body");
+  if (keys.energy) check_range(in, "fracture_energy", *keys.energy, 1e-12, 1e8, "J/m^2");
+  if (keys.stretch) check_range(in, "critical_stretch", *keys.stretch, 1e-12, 10.0, "");
+  return keys;
+}
 
 FlexBodyDef SceneTableReader::read_flex_body(const toml::table& table, size_t index) {
   FlexBodyDef flex;
@@ -140,24 +164,15 @@ NotchDef SceneTableReader::read_notch(const toml::node& node, const std::string&
 PdMaterialDef SceneTableReader::read_material(const toml::table& table, const std::string& path, bool fracture) {
   TableReader in(context_, table, path, "[flex_body.material]");
   PdMaterialDef m;
-  m.youngs_modulus = in.required_number("youngs_modulus", Sign::kPositive);
-  m.density = in.required_number("density", Sign::kPositive);
-  // physically meaningful ranges: beyond them the critical step under- or overflows
-  check_range(in, "youngs_modulus", m.youngs_modulus, 1e-3, 1e13, "Pa");
-  check_range(in, "density", m.density, 1e-3, 1e6, "kg/m^3");
+  read_modulus_and_density(in, m.youngs_modulus, m.density);
   // one fracture criterion: energy or stretch (the softening law takes both: its area and its peak)
-  const auto energy = in.optional_number("fracture_energy", Sign::kPositive);
-  const auto stretch = in.optional_number("critical_stretch", Sign::kPositive);
   m.model = read_material_model(in);
   const bool softening = m.model == PdMaterialDef::Model::kBilinearSoftening;
-  if (energy && stretch && !softening)
-    in.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
-  if (fracture && !energy && !stretch)
-    in.fail_missing("fracture_energy", "or critical_stretch; or set fracture = false in the flexible body");
+  const FractureKeys keys = read_fracture_keys(in, fracture, softening);
+  const auto& energy = keys.energy;
+  const auto& stretch = keys.stretch;
   m.fracture_energy = energy.value_or(0.0);
   m.critical_stretch = stretch.value_or(0.0);
-  if (energy) check_range(in, "fracture_energy", *energy, 1e-12, 1e8, "J/m^2");
-  if (stretch) check_range(in, "critical_stretch", *stretch, 1e-12, 10.0, "");
   m.plane_strain = in.choice("plane", {"stress", "strain"}, "stress") == "strain";
   if (softening) read_softening_keys(in, m, energy, stretch);
   // the state-based model takes any admissible Poisson ratio: -1 < nu < 1/2, and in plane
@@ -205,19 +220,10 @@ BlockMaterialDef SceneTableReader::read_block_material(const toml::table& table,
   // one law for the whole body: only its constants change from block to block
   if (flex.material.model != PdMaterialDef::Model::kBondBased)
     in.fail("block", "materials by block need the body's material.model = \"bond_based\"");
-  m.youngs_modulus = in.required_number("youngs_modulus", Sign::kPositive);
-  m.density = in.required_number("density", Sign::kPositive);
-  check_range(in, "youngs_modulus", m.youngs_modulus, 1e-3, 1e13, "Pa");
-  check_range(in, "density", m.density, 1e-3, 1e6, "kg/m^3");
-  const auto energy = in.optional_number("fracture_energy", Sign::kPositive);
-  const auto stretch = in.optional_number("critical_stretch", Sign::kPositive);
-  if (energy && stretch) in.fail("critical_stretch", "give fracture_energy or critical_stretch, not both");
-  if (flex.fracture && !energy && !stretch)
-    in.fail_missing("fracture_energy", "or critical_stretch; or set fracture = false in the flexible body");
-  if (energy) check_range(in, "fracture_energy", *energy, 1e-12, 1e8, "J/m^2");
-  if (stretch) check_range(in, "critical_stretch", *stretch, 1e-12, 10.0, "");
-  m.fracture_energy = energy.value_or(0.0);
-  m.critical_stretch = stretch.value_or(0.0);
+  read_modulus_and_density(in, m.youngs_modulus, m.density);
+  const FractureKeys keys = read_fracture_keys(in, flex.fracture, false);
+  m.fracture_energy = keys.energy.value_or(0.0);
+  m.critical_stretch = keys.stretch.value_or(0.0);
   in.finish();
   return m;
 }

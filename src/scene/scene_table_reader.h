@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -53,6 +54,16 @@ class SceneTableReader {
 
   // A physical quantity outside the range any material or model has.
   static void check_range(TableReader& in, const char* key, double value, double lo, double hi, const std::string& unit);
+
+  // Young's modulus and density of a material table, each in its range (flex_body_section.cpp).
+  static void read_modulus_and_density(TableReader& in, double& youngs_modulus, double& density);
+
+  // fracture_energy and critical_stretch of a material table (flex_body_section.cpp): both only
+  // when both_allowed, one of them while fracture is on, each in its range.
+  struct FractureKeys {
+    std::optional<double> energy, stretch;
+  };
+  static FractureKeys read_fracture_keys(TableReader& in, bool fracture, bool both_allowed);
 
   // Two-body elements may not connect a body to itself.
   static void check_distinct(TableReader& in, const std::string& a, const std::string& b, const std::string& what);

@@ -189,6 +189,23 @@ std::shared_ptr<ParticleCloud> graded_cloud(double dx, double thickness) {
   return cloud;
 }
 
+// The largest departure of the strain energy density from `continuum` under `strain` over the
+// interior particles of each half (x < 0, x > 0) of the 40 x 20 mm plate of graded_cloud: those a
+// horizon and a spacing from every edge and from the seam.
+void interior_error(PdBody& body, const Eigen::Matrix2d& strain, double continuum, double out[2], int counted[2]) {
+  std::vector<double> density;
+  body.strain_energy_density(test::affine_positions(body, strain), density);
+  const std::vector<double>& x = body.reference_positions();
+  const double keep = body.horizon() + body.grid_spacing();
+  for (int i = 0; i < body.particle_count(); ++i) {
+    const double px = x[2 * i], py = x[2 * i + 1];
+    if (std::abs(px) < keep || std::abs(px) > 0.02 - keep || std::abs(py) > 0.01 - keep) continue;
+    const int half = px > 0.0 ? 1 : 0;
+    out[half] = std::max(out[half], std::abs(density[i] / continuum - 1.0));
+    ++counted[half];
+  }
+}
+
 // Under a uniform strain each particle's strain energy density is the sum over its bonds of
 // k0 |xi| s^2 / 4 over its own volume, where k0 = c w beta V_i V_j: on unequal volumes the sum
 // weighs each neighbour by its own volume. Deep inside either half (beyond a horizon and a
@@ -201,20 +218,6 @@ TEST(OffGrid, GradedPointFileKeepsTheContinuumEnergyDensityOnBothSpacings) {
   const double continuum = uniaxial_strain_energy_density(micromodulus(72e9, t, delta, false), t, delta, eps);
   Eigen::Matrix2d strain = Eigen::Matrix2d::Zero();
   strain(0, 0) = eps;
-  // the largest departure from the continuum over the interior particles of each half
-  // (x < 0, x > 0) of a 40 x 20 mm plate
-  const auto interior_error = [&](PdBody& body, double out[2], int counted[2]) {
-    std::vector<double> density;
-    body.strain_energy_density(test::affine_positions(body, strain), density);
-    const std::vector<double>& x = body.reference_positions();
-    for (int i = 0; i < body.particle_count(); ++i) {
-      const double px = x[2 * i], py = x[2 * i + 1], keep = delta + dx;
-      if (std::abs(px) < keep || std::abs(px) > 0.02 - keep || std::abs(py) > 0.01 - keep) continue;
-      const int half = px > 0.0 ? 1 : 0;
-      out[half] = std::max(out[half], std::abs(density[i] / continuum - 1.0));
-      ++counted[half];
-    }
-  };
   FlexBodyDef def = test::glass_plate(0.04, 0.02, dx, t);
   def.surface_correction = false;
   def.fracture = false;
@@ -226,8 +229,8 @@ TEST(OffGrid, GradedPointFileKeepsTheContinuumEnergyDensityOnBothSpacings) {
   EXPECT_EQ(graded->volumes()[400], 0.25 * dx * dx * t);
   double on_grid[2] = {0.0, 0.0}, worst[2] = {0.0, 0.0};
   int grid_counted[2] = {0, 0}, counted[2] = {0, 0};
-  interior_error(*grid, on_grid, grid_counted);
-  interior_error(*graded, worst, counted);
+  interior_error(*grid, strain, continuum, on_grid, grid_counted);
+  interior_error(*graded, strain, continuum, worst, counted);
   std::printf("graded plate: energy density within %.2e (coarse, %d particles) and %.2e (fine, %d) of the "
               "continuum; on the grid %.2e\n", worst[0], counted[0], worst[1], counted[1], on_grid[0]);
   EXPECT_GT(counted[0], 10);
@@ -265,22 +268,10 @@ TEST(OffGrid, BodyForceOnAGradedPointFileFollowsEachVolume) {
 // within 2 % (the two differ only in the fine half's free edges); a fine particle counted with the
 // cell's volume would make it 2.5 times as large.
 TEST(OffGrid, StateBasedGradedPointFileKeepsTheContinuumEnergyDensityOnBothSpacings) {
-  const double dx = 1e-3, t = 1e-3, eps = 1e-4, delta = 3 * dx, nu = 0.22;
+  const double dx = 1e-3, t = 1e-3, eps = 1e-4, nu = 0.22;
   const double continuum = 0.5 * (lps_bulk_modulus(72e9, nu, false) + lps_shear_modulus(72e9, nu)) * eps * eps;
   Eigen::Matrix2d strain = Eigen::Matrix2d::Zero();
   strain(0, 0) = eps;
-  const auto interior_error = [&](PdBody& body, double out[2], int counted[2]) {
-    std::vector<double> density;
-    body.strain_energy_density(test::affine_positions(body, strain), density);
-    const std::vector<double>& x = body.reference_positions();
-    for (int i = 0; i < body.particle_count(); ++i) {
-      const double px = x[2 * i], py = x[2 * i + 1], keep = delta + dx;
-      if (std::abs(px) < keep || std::abs(px) > 0.02 - keep || std::abs(py) > 0.01 - keep) continue;
-      const int half = px > 0.0 ? 1 : 0;
-      out[half] = std::max(out[half], std::abs(density[i] / continuum - 1.0));
-      ++counted[half];
-    }
-  };
   FlexBodyDef def = test::glass_plate(0.04, 0.02, dx, t);
   def.material.model = PdMaterialDef::Model::kStateBased;
   def.material.poisson_ratio = nu;
@@ -291,8 +282,8 @@ TEST(OffGrid, StateBasedGradedPointFileKeepsTheContinuumEnergyDensityOnBothSpaci
   auto graded = PdBody::build(def, 0);
   double on_grid[2] = {0.0, 0.0}, worst[2] = {0.0, 0.0};
   int grid_counted[2] = {0, 0}, counted[2] = {0, 0};
-  interior_error(*grid, on_grid, grid_counted);
-  interior_error(*graded, worst, counted);
+  interior_error(*grid, strain, continuum, on_grid, grid_counted);
+  interior_error(*graded, strain, continuum, worst, counted);
   std::printf("graded state-based plate: energy density within %.2e (coarse, %d particles) and %.2e (fine, %d) of "
               "the continuum; on the grid %.2e\n", worst[0], counted[0], worst[1], counted[1], on_grid[0]);
   EXPECT_GT(counted[0], 10);

@@ -77,7 +77,7 @@ void BM_ForcePass250k(benchmark::State& state) {
     body->add_forces(q, qd, 0.0, g);
     benchmark::DoNotOptimize(g.data());
   }
-  const std::vector<uint8_t>& broken = body->bonds().broken;
+  const std::vector<uint8_t>& broken = body->bond_state().broken;
   if (std::count(broken.begin(), broken.end(), 0) != static_cast<long>(broken.size()))
     state.SkipWithError("bonds broke during the passes");
   const double bonds = static_cast<double>(body->bonds().directed_count());

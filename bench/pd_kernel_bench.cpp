@@ -62,7 +62,8 @@ void report(benchmark::State& state, const Plate& p) {
   state.counters["bond_evals_per_s_per_core"] =
       benchmark::Counter(bonds * state.iterations() / threads, benchmark::Counter::kIsRate);
   state.counters["bytes_per_particle"] = static_cast<double>(p.body->memory_bytes()) / p.body->particle_count();
-  state.counters["bytes_per_bond"] = static_cast<double>(p.body->bonds().bytes()) / bonds;
+  const double bond_bytes = static_cast<double>(p.body->bonds().bytes() + p.body->bond_state().bytes());
+  state.counters["bytes_per_bond"] = bond_bytes / bonds;
   state.counters["bonds_per_particle"] = bonds / p.body->particle_count();
 }
 
@@ -71,7 +72,7 @@ void BM_BondForces(benchmark::State& state) {
   Plate& p = plate();
   set_threads(state);
   for (auto _ : state) {
-    add_bond_forces(p.body->bonds(), p.q.data(), p.g.data());
+    add_bond_forces(p.body->bonds(), p.body->bond_state(), p.q.data(), p.g.data());
     benchmark::ClobberMemory();
   }
   report(state, p);
@@ -86,7 +87,7 @@ void BM_BondForcesWithStretchMaxima(benchmark::State& state) {
   set_threads(state);
   std::vector<double> most(p.body->particle_count());
   for (auto _ : state) {
-    add_bond_forces(p.body->bonds(), p.q.data(), p.g.data(), most.data());
+    add_bond_forces(p.body->bonds(), p.body->bond_state(), p.q.data(), p.g.data(), most.data());
     benchmark::ClobberMemory();
   }
   report(state, p);
@@ -99,7 +100,7 @@ void BM_DampedBondForces(benchmark::State& state) {
   Plate& p = plate();
   set_threads(state);
   for (auto _ : state) {
-    add_damped_bond_forces(p.body->bonds(), p.q.data(), p.qd.data(), 1e-8, p.g.data());
+    add_damped_bond_forces(p.body->bonds(), p.body->bond_state(), p.q.data(), p.qd.data(), 1e-8, p.g.data());
     benchmark::ClobberMemory();
   }
   report(state, p);

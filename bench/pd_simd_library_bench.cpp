@@ -33,7 +33,7 @@ struct ShippedGlass {
     g = Eigen::VectorXd::Zero(q.size());
     reference = Eigen::VectorXd::Zero(q.size());
     set_vector_kernels(VectorKernels::kPortable);
-    add_bond_forces(body->bonds(), q.data(), reference.data());
+    add_bond_forces(body->bonds(), body->bond_state(), q.data(), reference.data());
     set_vector_kernels(VectorKernels::kAvx512);
   }
 };
@@ -43,8 +43,8 @@ ShippedGlass& glass() {
   return p;
 }
 
-bench::RowArrays arrays(const BondStore& b) {
-  return {b.row.data(), b.neighbor.data(), b.length_class.data(), b.inv_length_table.data(), b.stiffness.data()};
+bench::RowArrays arrays(const BondStore& b, const BondState& live) {
+  return {b.row.data(), b.neighbor.data(), b.length_class.data(), b.inv_length_table.data(), live.stiffness.data()};
 }
 
 using Rows = void (*)(int, int, const bench::RowArrays&, const double*, double*);
@@ -59,7 +59,7 @@ void BM_GlassElasticForces(benchmark::State& state) {
   ShippedGlass& p = glass();
   omp_set_num_threads(1);
   const BondStore& bonds = p.body->bonds();
-  const bench::RowArrays r = arrays(bonds);
+  const bench::RowArrays r = arrays(bonds, p.body->bond_state());
   const Rows library[] = {bench::elastic_rows_xsimd_avx512, bench::elastic_rows_xsimd_avx2,
                           bench::elastic_rows_xsimd_gather_avx512, bench::elastic_rows_xsimd_gather_avx2};
   const VectorKernels hand[] = {VectorKernels::kAvx512, VectorKernels::kAvx2, VectorKernels::kPortable};

@@ -144,7 +144,7 @@ ParticleContact::Sums ParticleContact::sweep(const Eigen::VectorXd& q, const Eig
     const int end = std::min(n, (c + 1) * kPairChunkParticles);
     for (int a = c * kPairChunkParticles; a < end; ++a) {
       const int xa = coordinate_[a];
-      const uint8_t* broken = bodies_[body_of_[a]]->bonds().broken.data();
+      const uint8_t* broken = bodies_[body_of_[a]]->bond_state().broken.data();
       double fx = 0.0, fy = 0.0;
       for (int64_t e = candidates_.row[a]; e < candidates_.row[a + 1]; ++e) {
         // an intact bond holds the pair (a bond breaking mid-step is flagged 2: broken)

@@ -84,7 +84,8 @@ GlBondForceDevice::~GlBondForceDevice() {
   if (current.current()) glDeleteBuffers(kBufferCount, buffers_);
 }
 
-void GlBondForceDevice::upload(const BondStore& bonds, const uint8_t* no_fail, const double* reference) {
+void GlBondForceDevice::upload(const BondStore& bonds, const BondState& live, const uint8_t* no_fail,
+                               const double* reference) {
   EglContext::Scope current(context_->egl());
   if (bonds.own_lengths()) throw DeviceError("the GPU path reads bond lengths from the grid; this body's particles are off it");
   if (bonds.own_break_stretches())
@@ -110,7 +111,7 @@ void GlBondForceDevice::upload(const BondStore& bonds, const uint8_t* no_fail, c
   const std::vector<uint32_t> packed = pack_bytes(classes.data(), classes.size());
   store(buffers_[kLengthClasses], packed.size() * sizeof(uint32_t), packed.data(), GL_STATIC_DRAW);
   store(buffers_[kStiffness], static_cast<size_t>(slots) * n * sizeof(float), nullptr, GL_DYNAMIC_DRAW);
-  upload_stiffness(bonds);
+  upload_stiffness(bonds, live);
   if (fp32) {
     const std::vector<float> table(bonds.inv_length_table.begin(), bonds.inv_length_table.end());
     store(buffers_[kInvLengths], table.size() * sizeof(float), table.data(), GL_STATIC_DRAW);
@@ -143,8 +144,8 @@ void GlBondForceDevice::upload(const BondStore& bonds, const uint8_t* no_fail, c
   stiffness_stale_ = false;
 }
 
-void GlBondForceDevice::upload_stiffness(const BondStore& bonds) {
-  slots_ = slot_major<float>(bonds, slots_per_row_, 0.0f, [&](int, int64_t b) { return bonds.stiffness[b]; });
+void GlBondForceDevice::upload_stiffness(const BondStore& bonds, const BondState& live) {
+  slots_ = slot_major<float>(bonds, slots_per_row_, 0.0f, [&](int, int64_t b) { return live.stiffness[b]; });
   replace(buffers_[kStiffness], slots_.size() * sizeof(float), slots_.data());
 }
 
@@ -188,7 +189,7 @@ void GlBondForceDevice::read_forces(const DeviceEvaluation& e) {
   }
 }
 
-void GlBondForceDevice::mark_broken(BondStore& bonds, const DeviceEvaluation& e) {
+void GlBondForceDevice::mark_broken(const BondStore& bonds, BondState& live, const DeviceEvaluation& e) {
   // one bit per slot, word w of row i at w n + i: mark, as the CPU's cut_row_forces does, every
   // bond the GPU left out and the host still holds
   const size_t n = static_cast<size_t>(particles_);
@@ -201,17 +202,17 @@ void GlBondForceDevice::mark_broken(BondStore& bonds, const DeviceEvaluation& e)
       e.row_broke[i] = 1;
       for (; bits != 0u; bits &= bits - 1u) {
         const int64_t b = bonds.row[i] + 32 * w + __builtin_ctz(bits);
-        if (bonds.stiffness[b] > 0.0f) bonds.broken[b] = 2;
+        if (live.stiffness[b] > 0.0f) live.broken[b] = 2;
       }
     }
 }
 
-void GlBondForceDevice::add_forces(BondStore& bonds, const DeviceEvaluation& e) {
+void GlBondForceDevice::add_forces(const BondStore& bonds, BondState& live, const DeviceEvaluation& e) {
   if (bonds.particle_count() != particles_) throw std::logic_error("GPU bond forces: the bonds were not uploaded");
   if (particles_ == 0) return;
   EglContext::Scope current(context_->egl());
   if (stiffness_stale_) {
-    upload_stiffness(bonds);
+    upload_stiffness(bonds, live);
     stiffness_stale_ = false;
   }
   const bool damped = e.eta_over_e > 0.0 && e.vel;
@@ -219,7 +220,7 @@ void GlBondForceDevice::add_forces(BondStore& bonds, const DeviceEvaluation& e) 
   last_ = Pass{damped, e.breaking, e.row_max != nullptr, damped ? e.eta_over_e : 0.0, e.s0};
   dispatch(last_);
   read_forces(e);
-  if (e.breaking) mark_broken(bonds, e);
+  if (e.breaking) mark_broken(bonds, live, e);
   check_device("the GPU bond-force pass");
 }
 

@@ -32,9 +32,10 @@ class GlBondForceDevice : public BondForceDevice {
   // From NVIDIA's GL_NVX_gpu_memory_info or AMD's GL_ATI_meminfo; negative where neither answers
   // (Mesa's llvmpipe, Intel).
   double free_memory() override;
-  void upload(const BondStore& bonds, const uint8_t* no_fail, const double* reference) override;
+  void upload(const BondStore& bonds, const BondState& live, const uint8_t* no_fail,
+              const double* reference) override;
   void bonds_changed() override { stiffness_stale_ = true; }
-  void add_forces(BondStore& bonds, const DeviceEvaluation& e) override;
+  void add_forces(const BondStore& bonds, BondState& live, const DeviceEvaluation& e) override;
   // For benchmarks: the last evaluation's pass again on the positions already on the GPU, nothing
   // uploaded or read back; returns when the GPU has finished. What the pass costs once the state
   // is resident.
@@ -52,12 +53,12 @@ class GlBondForceDevice : public BondForceDevice {
   };
   void dispatch(const Pass& pass);
   // the host's stiffness, slot-major, to the GPU
-  void upload_stiffness(const BondStore& bonds);
+  void upload_stiffness(const BondStore& bonds, const BondState& live);
   // what an evaluation reads, in the device's precision: positions (fp32: displacements from the
   // reference) and velocities
   void upload_state(const DeviceEvaluation& e, bool damped);
   void read_forces(const DeviceEvaluation& e);
-  void mark_broken(BondStore& bonds, const DeviceEvaluation& e);
+  void mark_broken(const BondStore& bonds, BondState& live, const DeviceEvaluation& e);
 
   std::shared_ptr<GlComputeContext> context_;
   DevicePrecision precision_;

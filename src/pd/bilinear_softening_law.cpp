@@ -68,9 +68,10 @@ void BilinearSofteningLaw::set_coefficients(const LawSetup& setup, BondStore& bo
       linear_[b] = setup.no_fail[i] || setup.no_fail[bonds.neighbor[b]];
 }
 
-double BilinearSofteningLaw::critical_time_step(const BondStore& bonds, const std::vector<double>& masses) const {
+double BilinearSofteningLaw::critical_time_step(const BondStore& bonds, const BondState& live,
+                                                const std::vector<double>& masses) const {
   // softening only lowers the stiffness: the bound of the intact springs holds
-  return spring_critical_time_step(bonds, masses);
+  return spring_critical_time_step(bonds, live, masses);
 }
 
 double BilinearSofteningLaw::secant_factor(double s, double h) const {
@@ -80,7 +81,7 @@ double BilinearSofteningLaw::secant_factor(double s, double h) const {
   return curve_.s0 * (curve_.s1 - m) / (m * (curve_.s1 - curve_.s0));
 }
 
-void BilinearSofteningLaw::add_forces(const BondStore& bonds, const LawEvaluation& e) {
+void BilinearSofteningLaw::add_forces(const BondStore& bonds, const BondState& live, const LawEvaluation& e) {
   const double* pos = e.pos;
   const double* vel = e.eta_over_e > 0.0 ? e.vel : nullptr;
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
@@ -88,7 +89,7 @@ void BilinearSofteningLaw::add_forces(const BondStore& bonds, const LawEvaluatio
     for (int i = begin; i < end; ++i) {
       double fx = 0.0, fy = 0.0, top = -1.0;
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-        const double k = bonds.stiffness[b];
+        const double k = live.stiffness[b];
         if (k == 0.0) continue;  // broken
         const int32_t j = bonds.neighbor[b];
         const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
@@ -112,13 +113,13 @@ void BilinearSofteningLaw::add_forces(const BondStore& bonds, const LawEvaluatio
   });
 }
 
-double BilinearSofteningLaw::strain_energy(const BondStore& bonds, const double* pos) const {
+double BilinearSofteningLaw::strain_energy(const BondStore& bonds, const BondState& live, const double* pos) const {
   // half of the pair's k |xi| psi(s; h) per stored direction, rows in fixed ranges added in order
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
     for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-        const double k = bonds.stiffness[b];
+        const double k = live.stiffness[b];
         if (k == 0.0) continue;
         const int32_t j = bonds.neighbor[b];
         const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
@@ -132,14 +133,14 @@ double BilinearSofteningLaw::strain_energy(const BondStore& bonds, const double*
   });
 }
 
-double BilinearSofteningLaw::damping_power(const BondStore& bonds, const double* pos, const double* vel,
-                                           double eta_over_e) const {
+double BilinearSofteningLaw::damping_power(const BondStore& bonds, const BondState& live, const double* pos,
+                                           const double* vel, double eta_over_e) const {
   // k omega eta/E |xi| (ds/dt)^2 per pair, half per stored direction
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
     for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-        const double k = bonds.stiffness[b];
+        const double k = live.stiffness[b];
         if (k == 0.0) continue;
         const int32_t j = bonds.neighbor[b];
         const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
@@ -154,12 +155,12 @@ double BilinearSofteningLaw::damping_power(const BondStore& bonds, const double*
   });
 }
 
-void BilinearSofteningLaw::energy_density(const BondStore& bonds, const double* pos,
+void BilinearSofteningLaw::energy_density(const BondStore& bonds, const BondState& live, const double* pos,
                                           const std::vector<double>& volumes, double* out) const {
   for (int i = 0; i < bonds.particle_count(); ++i) {
     double sum = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      const double k = bonds.stiffness[b];
+      const double k = live.stiffness[b];
       if (k == 0.0) continue;
       const int32_t j = bonds.neighbor[b];
       const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
@@ -171,8 +172,8 @@ void BilinearSofteningLaw::energy_density(const BondStore& bonds, const double* 
   }
 }
 
-BreakResult BilinearSofteningLaw::break_bonds(BondStore& bonds, const double* pos, const uint8_t*,
-                                              const double* row_max) {
+BreakResult BilinearSofteningLaw::break_bonds(const BondStore& bonds, BondState& live, const double* pos,
+                                              const uint8_t*, const double* row_max) {
   // in row order on one thread: the same sum on any thread count. Only rows whose largest
   // stretch passed s0 can raise a history (the force evaluation's maxima when it saw these positions).
   BreakResult result;
@@ -181,7 +182,7 @@ BreakResult BilinearSofteningLaw::break_bonds(BondStore& bonds, const double* po
   for (int i = 0; i < n; ++i) {
     if (row_max && row_max[i] <= curve_.s0) continue;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      if (bonds.broken[b] || linear_[b]) continue;
+      if (live.broken[b] || linear_[b]) continue;
       const int32_t j = bonds.neighbor[b];
       const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
       const double l0 = bonds.inv_length(b);
@@ -189,13 +190,11 @@ BreakResult BilinearSofteningLaw::break_bonds(BondStore& bonds, const double* po
       const double h = history_[b];
       if (s <= curve_.s0 || s <= h) continue;
       // what raising h to s takes out of the bond: its energy at s before minus after
-      const double k = bonds.stiffness[b];
+      const double k = live.stiffness[b];
       result.energy += 0.5 * k * (softening_bond_energy(s, h, curve_) - softening_bond_energy(s, s, curve_)) / l0;
       history_[b] = s;
       if (s < curve_.s1) continue;
-      bonds.broken_stiffness.emplace_back(b, bonds.stiffness[b]);
-      bonds.broken[b] = 1;
-      bonds.stiffness[b] = 0.0f;
+      live.break_bond(b);
       ++directed;
     }
   }

@@ -47,18 +47,19 @@ class BilinearSofteningLaw : public MaterialLaw {
   double final_stretch() const { return curve_.s1; }
   // The bond-based spring stiffness (surface correction included); history 0, no-fail flags kept.
   void set_coefficients(const LawSetup& setup, BondStore& bonds) override;
-  double critical_time_step(const BondStore& bonds, const std::vector<double>& masses) const override;
+  double critical_time_step(const BondStore& bonds, const BondState& live,
+                            const std::vector<double>& masses) const override;
 
-  void add_forces(const BondStore& bonds, const LawEvaluation& e) override;
-  double strain_energy(const BondStore& bonds, const double* pos) const override;
-  double damping_power(const BondStore& bonds, const double* pos, const double* vel,
+  void add_forces(const BondStore& bonds, const BondState& live, const LawEvaluation& e) override;
+  double strain_energy(const BondStore& bonds, const BondState& live, const double* pos) const override;
+  double damping_power(const BondStore& bonds, const BondState& live, const double* pos, const double* vel,
                        double eta_over_e) const override;
-  void energy_density(const BondStore& bonds, const double* pos, const std::vector<double>& volumes,
-                      double* out) const override;
+  void energy_density(const BondStore& bonds, const BondState& live, const double* pos,
+                      const std::vector<double>& volumes, double* out) const override;
 
   // Raises the history of every bond past s0 and past its h to its stretch, books the energy that
   // takes out of the bond, and breaks the bonds that reached s1.
-  BreakResult break_bonds(BondStore& bonds, const double* pos, const uint8_t* no_fail,
+  BreakResult break_bonds(const BondStore& bonds, BondState& live, const double* pos, const uint8_t* no_fail,
                           const double* row_max) override;
 
   void save(FlexState& out) const override { out.bond_history = history_; }

@@ -61,25 +61,25 @@ void set_bond_stiffness(const LawSetup& setup, BondStore& bonds) {
       }
     });
   }
-  bonds.stiffness.resize(k0.size());
+  bonds.coefficient.resize(k0.size());
   parallel_chunks(count, [&](int64_t, int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
         const int32_t j = bonds.neighbor[b];
         const double mean_x = 0.5 * (gx[i] + gx[j]), mean_y = 0.5 * (gy[i] + gy[j]);
         const double cx = nx2[b], cy = 1.0 - cx;
-        bonds.stiffness[b] = static_cast<float>(k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y)));
+        bonds.coefficient[b] = static_cast<float>(k0[b] / std::sqrt(cx / (mean_x * mean_x) + cy / (mean_y * mean_y)));
       }
     }
   });
 }
 
-double spring_critical_time_step(const BondStore& b, const std::vector<double>& masses) {
+double spring_critical_time_step(const BondStore& b, const BondState& live, const std::vector<double>& masses) {
   // dt < sqrt(2 rho / sum_j C_ij V_j / |xi|) = sqrt(2 m_i / sum_b k_b / |xi_b|)
   double dt = std::numeric_limits<double>::infinity();
   for (int i = 0; i < b.particle_count(); ++i) {
     double sum = 0.0;
-    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) sum += double(b.stiffness[k]) * b.inv_length(k);
+    for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) sum += double(live.stiffness[k]) * b.inv_length(k);
     if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * masses[i] / sum));
   }
   return dt;
@@ -87,39 +87,41 @@ double spring_critical_time_step(const BondStore& b, const std::vector<double>& 
 
 void BondBasedLaw::set_coefficients(const LawSetup& setup, BondStore& bonds) { set_bond_stiffness(setup, bonds); }
 
-double BondBasedLaw::critical_time_step(const BondStore& bonds, const std::vector<double>& masses) const {
-  return spring_critical_time_step(bonds, masses);
+double BondBasedLaw::critical_time_step(const BondStore& bonds, const BondState& live,
+                                        const std::vector<double>& masses) const {
+  return spring_critical_time_step(bonds, live, masses);
 }
 
-void BondBasedLaw::add_forces(const BondStore& bonds, const LawEvaluation& e) {
+void BondBasedLaw::add_forces(const BondStore& bonds, const BondState& live, const LawEvaluation& e) {
   if (e.eta_over_e > 0.0)
-    add_damped_bond_forces(bonds, e.pos, e.vel, e.eta_over_e, e.force, e.row_max, e.pos_copy);
+    add_damped_bond_forces(bonds, live, e.pos, e.vel, e.eta_over_e, e.force, e.row_max, e.pos_copy);
   else
-    add_bond_forces(bonds, e.pos, e.force, e.row_max, e.pos_copy);
+    add_bond_forces(bonds, live, e.pos, e.force, e.row_max, e.pos_copy);
 }
 
-long BondBasedLaw::add_forces_breaking(BondStore& bonds, const LawEvaluation& e, const uint8_t* no_fail,
-                                       std::vector<uint8_t>& row_broke, double half_kick, double& energy) {
+long BondBasedLaw::add_forces_breaking(const BondStore& bonds, BondState& live, const LawEvaluation& e,
+                                       const uint8_t* no_fail, std::vector<uint8_t>& row_broke, double half_kick,
+                                       double& energy) {
   row_broke.resize(bonds.particle_count(), 0);
   BreakingEvaluation breaking;
   breaking.s0 = s0_;
   breaking.no_fail = no_fail;
   breaking.row_broke = row_broke.data();
-  add_bond_forces_breaking(bonds, e.pos, e.vel, e.eta_over_e, breaking, e.force, e.pos_copy);
-  return settle_broken_bonds(bonds, e.pos, e.vel, half_kick, row_broke.data(), energy);
+  add_bond_forces_breaking(bonds, live, e.pos, e.vel, e.eta_over_e, breaking, e.force, e.pos_copy);
+  return settle_broken_bonds(bonds, live, e.pos, e.vel, half_kick, row_broke.data(), energy);
 }
 
-double BondBasedLaw::strain_energy(const BondStore& bonds, const double* pos) const {
-  return bond_strain_energy(bonds, pos);
+double BondBasedLaw::strain_energy(const BondStore& bonds, const BondState& live, const double* pos) const {
+  return bond_strain_energy(bonds, live, pos);
 }
 
-double BondBasedLaw::damping_power(const BondStore& bonds, const double* pos, const double* vel,
-                                   double eta_over_e) const {
-  return bond_damping_power(bonds, pos, vel, eta_over_e);
+double BondBasedLaw::damping_power(const BondStore& bonds, const BondState& live, const double* pos,
+                                   const double* vel, double eta_over_e) const {
+  return bond_damping_power(bonds, live, pos, vel, eta_over_e);
 }
 
-void BondBasedLaw::energy_density(const BondStore& b, const double* p, const std::vector<double>& volumes,
-                                  double* out) const {
+void BondBasedLaw::energy_density(const BondStore& b, const BondState& live, const double* p,
+                                  const std::vector<double>& volumes, double* out) const {
   // (1/V_i) sum_j k |xi| s^2 / 4
   for (int i = 0; i < b.particle_count(); ++i) {
     double sum = 0.0;
@@ -127,16 +129,16 @@ void BondBasedLaw::energy_density(const BondStore& b, const double* p, const std
       const int32_t j = b.neighbor[k];
       const double dx = p[2 * j] - p[2 * i], dy = p[2 * j + 1] - p[2 * i + 1];
       const double s = std::sqrt(dx * dx + dy * dy) * b.inv_length(k) - 1.0;
-      sum += 0.25 * double(b.stiffness[k]) * s * s / b.inv_length(k);
+      sum += 0.25 * double(live.stiffness[k]) * s * s / b.inv_length(k);
     }
     out[i] = sum / volumes[i];
   }
 }
 
-BreakResult BondBasedLaw::break_bonds(BondStore& bonds, const double* pos, const uint8_t* no_fail,
-                                      const double* row_max) {
+BreakResult BondBasedLaw::break_bonds(const BondStore& bonds, BondState& live, const double* pos,
+                                      const uint8_t* no_fail, const double* row_max) {
   BreakResult result;
-  result.pairs = break_stretched_bonds(bonds, pos, s0_, no_fail, result.energy, row_max);
+  result.pairs = break_stretched_bonds(bonds, live, pos, s0_, no_fail, result.energy, row_max);
   return result;
 }
 

@@ -20,19 +20,20 @@ class BondBasedLaw : public MaterialLaw {
   double critical_stretch() const override { return s0_; }
   // k = k0 times the surface correction's factor (set_bond_stiffness).
   void set_coefficients(const LawSetup& setup, BondStore& bonds) override;
-  double critical_time_step(const BondStore& bonds, const std::vector<double>& masses) const override;
+  double critical_time_step(const BondStore& bonds, const BondState& live,
+                            const std::vector<double>& masses) const override;
 
-  void add_forces(const BondStore& bonds, const LawEvaluation& e) override;
+  void add_forces(const BondStore& bonds, const BondState& live, const LawEvaluation& e) override;
   bool breaks_in_evaluation() const override { return true; }
-  long add_forces_breaking(BondStore& bonds, const LawEvaluation& e, const uint8_t* no_fail,
+  long add_forces_breaking(const BondStore& bonds, BondState& live, const LawEvaluation& e, const uint8_t* no_fail,
                            std::vector<uint8_t>& row_broke, double half_kick, double& energy) override;
-  double strain_energy(const BondStore& bonds, const double* pos) const override;
-  double damping_power(const BondStore& bonds, const double* pos, const double* vel,
+  double strain_energy(const BondStore& bonds, const BondState& live, const double* pos) const override;
+  double damping_power(const BondStore& bonds, const BondState& live, const double* pos, const double* vel,
                        double eta_over_e) const override;
-  void energy_density(const BondStore& bonds, const double* pos, const std::vector<double>& volumes,
-                      double* out) const override;
+  void energy_density(const BondStore& bonds, const BondState& live, const double* pos,
+                      const std::vector<double>& volumes, double* out) const override;
 
-  BreakResult break_bonds(BondStore& bonds, const double* pos, const uint8_t* no_fail,
+  BreakResult break_bonds(const BondStore& bonds, BondState& live, const double* pos, const uint8_t* no_fail,
                           const double* row_max) override;
 
  private:
@@ -43,7 +44,8 @@ class BondBasedLaw : public MaterialLaw {
 // turns it off). Shared by the laws whose bonds are springs.
 void set_bond_stiffness(const LawSetup& setup, BondStore& bonds);
 
-// Silling & Askari (2005): sqrt(2 m_i / sum_b k_b / |xi_b|), min over particles.
-double spring_critical_time_step(const BondStore& bonds, const std::vector<double>& masses);
+// Silling & Askari (2005): sqrt(2 m_i / sum_b k_b / |xi_b|) over the bonds intact in `live`, min over
+// particles.
+double spring_critical_time_step(const BondStore& bonds, const BondState& live, const std::vector<double>& masses);
 
 }  // namespace periflex

@@ -18,6 +18,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "pd/bond_state.h"
 #include "pd/bond_store.h"
 
 namespace periflex {
@@ -48,7 +49,7 @@ struct DeviceEvaluation {
   double* force = nullptr;       // the row sums are added to it
   double* row_max = nullptr;     // when not null: each row's largest stretch over its intact bonds (-1: none)
   // the in-evaluation break test (add_bond_forces_breaking): when breaking, every breakable intact
-  // bond past s0 is left out, marked bonds.broken = 2, and its row flagged in row_broke (n bytes,
+  // bond past s0 is left out, marked broken = 2 in the body's BondState, and its row flagged in row_broke (n bytes,
   // all 0 on entry)
   bool breaking = false;
   double s0 = 0.0;
@@ -62,15 +63,16 @@ class BondForceDevice {
   virtual const std::string& description() const = 0;
   // Bytes of memory the device has free now; negative when its driver does not say.
   virtual double free_memory() { return -1.0; }
-  // Takes the body's bonds (topology, stiffness, broken flags), no-fail flags (null: none) and
+  // Takes the body's bonds (topology; stiffness from `live`), no-fail flags (null: none) and
   // reference positions (interleaved, 2 n), once; the device keeps them for every later evaluation.
-  virtual void upload(const BondStore& bonds, const uint8_t* no_fail, const double* reference) = 0;
+  virtual void upload(const BondStore& bonds, const BondState& live, const uint8_t* no_fail,
+                      const double* reference) = 0;
   // The host changed stiffness or broken flags outside an evaluation (a break pass after the step,
   // the knife, a restored state): the device takes them again before its next evaluation.
   virtual void bonds_changed() = 0;
   // One evaluation of the bonds last uploaded (see DeviceEvaluation); with e.breaking, also marks
-  // the bonds it left out in bonds.broken.
-  virtual void add_forces(BondStore& bonds, const DeviceEvaluation& e) = 0;
+  // the bonds it left out in live.broken.
+  virtual void add_forces(const BondStore& bonds, BondState& live, const DeviceEvaluation& e) = 0;
 };
 
 // Bytes a device holds for bodies of `particles` particles and `directed_bonds` stored bond

@@ -139,8 +139,8 @@ inline double stretch(const BondStore& bonds, const double* pos, int i, int64_t 
 }
 
 // Largest stretch of each row into out.
-void row_maxima(const BondStore& bonds, const double* pos, double* out) {
-  const Rows r = rows_of(bonds);
+void row_maxima(const BondStore& bonds, const BondState& live, const double* pos, double* out) {
+  const Rows r = rows_of(bonds, live);
   const Isa which = isa(bonds);
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
 #ifdef PERIFLEX_HAVE_VECTOR_KERNELS
@@ -185,9 +185,9 @@ void force_rows(int begin, int end, Isa which, const Rows& r, const double* pos,
 }
 
 // The whole force loop, chunk by chunk on the threads; pos_copy receives pos chunk by chunk.
-void force_loop(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e, double* force,
-                double* row_max, double* pos_copy, const RowCut* cut) {
-  const Rows r = rows_of(bonds);
+void force_loop(const BondStore& bonds, const BondState& live, const double* pos, const double* vel, double eta_over_e,
+                double* force, double* row_max, double* pos_copy, const RowCut* cut) {
+  const Rows r = rows_of(bonds, live);
   const Isa which = isa(bonds);
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
@@ -227,23 +227,24 @@ void cut_row_forces(int i, const Rows& r, const RowCut& cut, const double* pos, 
 void set_vector_kernels(VectorKernels widest) { widest_allowed = widest; }
 void set_vector_kernels_enabled(bool enabled) { set_vector_kernels(enabled ? Isa::kAvx512 : Isa::kPortable); }
 
-void add_bond_forces(const BondStore& bonds, const double* pos, double* force, double* row_max, double* pos_copy) {
-  force_loop(bonds, pos, nullptr, 0.0, force, row_max, pos_copy, nullptr);
+void add_bond_forces(const BondStore& bonds, const BondState& live, const double* pos, double* force, double* row_max,
+                     double* pos_copy) {
+  force_loop(bonds, live, pos, nullptr, 0.0, force, row_max, pos_copy, nullptr);
 }
 
-void add_damped_bond_forces(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
-                            double* force, double* row_max, double* pos_copy) {
-  force_loop(bonds, pos, vel, eta_over_e, force, row_max, pos_copy, nullptr);
+void add_damped_bond_forces(const BondStore& bonds, const BondState& live, const double* pos, const double* vel,
+                            double eta_over_e, double* force, double* row_max, double* pos_copy) {
+  force_loop(bonds, live, pos, vel, eta_over_e, force, row_max, pos_copy, nullptr);
 }
 
-void add_bond_forces_breaking(BondStore& bonds, const double* pos, const double* vel, double eta_over_e,
-                              const BreakingEvaluation& breaking, double* force, double* pos_copy) {
-  const RowCut cut{breaking.s0, breaking.no_fail, bonds.broken.data(), breaking.row_broke};
-  force_loop(bonds, pos, vel && eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force, nullptr, pos_copy, &cut);
+void add_bond_forces_breaking(const BondStore& bonds, BondState& live, const double* pos, const double* vel,
+                              double eta_over_e, const BreakingEvaluation& breaking, double* force, double* pos_copy) {
+  const RowCut cut{breaking.s0, breaking.no_fail, live.broken.data(), breaking.row_broke};
+  force_loop(bonds, live, pos, vel && eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force, nullptr, pos_copy, &cut);
 }
 
-long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel, double half_kick,
-                         uint8_t* row_broke, double& energy_released) {
+long settle_broken_bonds(const BondStore& bonds, BondState& live, const double* pos, const double* vel,
+                         double half_kick, uint8_t* row_broke, double& energy_released) {
   // in row order on one thread: the same sum on any thread count (only rows at a crack tip)
   long directed = 0;
   double energy = 0.0;
@@ -254,10 +255,10 @@ long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel,
     if (i == n) break;
     row_broke[i] = 0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      if (bonds.broken[b] != 2) continue;
+      if (live.broken[b] != 2) continue;
       const int32_t j = bonds.neighbor[b];
       const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
-      const double len = std::sqrt(dx * dx + dy * dy), l0 = bonds.inv_length(b), k = bonds.stiffness[b];
+      const double len = std::sqrt(dx * dx + dy * dy), l0 = bonds.inv_length(b), k = live.stiffness[b];
       const double s = len * l0 - 1.0;
       // a quarter of k |xi| s^2 per copy: the strain energy where the evaluation saw the bond
       double e = 0.25 * k * s * s / l0;
@@ -268,9 +269,7 @@ long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel,
         e -= 0.5 * half_kick * k * s * (dx * dvx + dy * dvy) / len;
       }
       energy += e;
-      bonds.broken_stiffness.emplace_back(b, bonds.stiffness[b]);
-      bonds.broken[b] = 1;
-      bonds.stiffness[b] = 0.0f;
+      live.break_bond(b);
       ++directed;
     }
   }
@@ -278,10 +277,10 @@ long settle_broken_bonds(BondStore& bonds, const double* pos, const double* vel,
   return directed / 2;
 }
 
-double bond_strain_energy(const BondStore& bonds, const double* pos) {
+double bond_strain_energy(const BondStore& bonds, const BondState& live, const double* pos) {
   // each pair is visited twice: a quarter of k |xi| s^2 per visit; rows summed in fixed ranges
   // and the ranges in order, so the energy has the same bits on any thread count
-  const Rows r = rows_of(bonds);
+  const Rows r = rows_of(bonds, live);
   const Isa which = isa(bonds);
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
@@ -295,7 +294,7 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
       double local = 0.0;
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
         const double s = stretch(bonds, pos, i, b);
-        local += double(bonds.stiffness[b]) * s * s / bonds.inv_length(b);
+        local += double(live.stiffness[b]) * s * s / bonds.inv_length(b);
       }
       sum += 0.25 * local;
     }
@@ -303,7 +302,8 @@ double bond_strain_energy(const BondStore& bonds, const double* pos) {
   });
 }
 
-double bond_damping_power(const BondStore& bonds, const double* pos, const double* vel, double eta_over_e) {
+double bond_damping_power(const BondStore& bonds, const BondState& live, const double* pos, const double* vel,
+                          double eta_over_e) {
   // k eta/E |xi| (ds/dt)^2 per pair, half per visit; a fixed-order sum as above
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
     double sum = 0.0;
@@ -315,7 +315,7 @@ double bond_damping_power(const BondStore& bonds, const double* pos, const doubl
         const double dvx = vel[2 * j] - vel[2 * i], dvy = vel[2 * j + 1] - vel[2 * i + 1];
         const double l0 = bonds.inv_length(b);
         const double rate = (dx * dvx + dy * dvy) / std::sqrt(dx * dx + dy * dy) * l0;
-        local += double(bonds.stiffness[b]) * eta_over_e * rate * rate / l0;
+        local += double(live.stiffness[b]) * eta_over_e * rate * rate / l0;
       }
       sum += 0.5 * local;
     }
@@ -323,8 +323,8 @@ double bond_damping_power(const BondStore& bonds, const double* pos, const doubl
   });
 }
 
-long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const uint8_t* no_fail,
-                           double& energy_released, const double* row_max) {
+long break_stretched_bonds(const BondStore& bonds, BondState& live, const double* pos, double s0,
+                           const uint8_t* no_fail, double& energy_released, const double* row_max) {
   const int n = bonds.particle_count();
   long directed = 0;
   double energy = 0.0;
@@ -335,19 +335,17 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
   std::vector<double> computed;
   if (!row_max) {
     computed.resize(n);
-    row_maxima(bonds, pos, computed.data());
+    row_maxima(bonds, live, pos, computed.data());
   }
   const double* most = row_max ? row_max : computed.data();
   for (int i = 0; i < n; ++i) {
     if (most[i] <= bonds.row_break_stretch(i, s0) - kCutSlack || (no_fail && no_fail[i])) continue;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      if (bonds.broken[b] || (no_fail && no_fail[bonds.neighbor[b]])) continue;
+      if (live.broken[b] || (no_fail && no_fail[bonds.neighbor[b]])) continue;
       const double s = stretch(bonds, pos, i, b);
       if (s > bonds.break_stretch(i, b, s0)) {
-        energy += 0.25 * double(bonds.stiffness[b]) * s * s / bonds.inv_length(b);
-        bonds.broken_stiffness.emplace_back(b, bonds.stiffness[b]);
-        bonds.broken[b] = 1;
-        bonds.stiffness[b] = 0.0f;
+        energy += 0.25 * double(live.stiffness[b]) * s * s / bonds.inv_length(b);
+        live.break_bond(b);
         ++directed;
       }
     }
@@ -356,10 +354,10 @@ long break_stretched_bonds(BondStore& bonds, const double* pos, double s0, const
   return directed / 2;
 }
 
-void max_bond_stretch(const BondStore& bonds, const double* pos, float* out) {
+void max_bond_stretch(const BondStore& bonds, const BondState& live, const double* pos, float* out) {
   const int n = bonds.particle_count();
   std::vector<double> most(n);
-  row_maxima(bonds, pos, most.data());
+  row_maxima(bonds, live, pos, most.data());
   for (int i = 0; i < n; ++i) out[i] = static_cast<float>(std::max(most[i], 0.0));
 }
 

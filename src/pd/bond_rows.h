@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "pd/bond_state.h"
 #include "pd/bond_store.h"
 
 // On x86-64 with GCC or Clang the row loops also exist as AVX-512 code (eight bonds a vector)
@@ -22,7 +23,7 @@ struct Rows {
   const uint8_t* cls;    // length class of each bond
   const double* l0;      // 1 / |xi| per length class
   int classes;           // entries of l0
-  const float* k;        // stiffness, 0 once broken
+  const float* k;        // stiffness, 0 once broken (BondState::stiffness)
   const double* own;     // 1 / |xi| of each bond of a body off the grid (BondStore::bond_inv_length), or null
   const double* ps0;     // critical stretch of each particle (materials by block), or null: RowCut::s0
   const double* rs0;     // each row's smallest bond threshold (BondStore::row_s0), or null
@@ -31,10 +32,10 @@ struct Rows {
 // 1 / |xi| of bond b
 inline double ref_inv_length(const Rows& r, int64_t b) { return r.own ? r.own[b] : r.l0[r.cls[b]]; }
 
-inline Rows rows_of(const BondStore& b) {
+inline Rows rows_of(const BondStore& b, const BondState& live) {
   return {b.row.data(), b.neighbor.data(), b.neighbor_offset.empty() ? nullptr : b.neighbor_offset.data(),
           b.length_class.data(), b.inv_length_table.data(),
-          static_cast<int>(b.inv_length_table.size()), b.stiffness.data(),
+          static_cast<int>(b.inv_length_table.size()), live.stiffness.data(),
           b.own_lengths() ? b.bond_inv_length.data() : nullptr,
           b.own_break_stretches() ? b.particle_s0.data() : nullptr,
           b.own_break_stretches() ? b.row_s0.data() : nullptr};

@@ -3,9 +3,13 @@
 // own force without atomics; both copies hold bit-identical data and therefore compute the
 // same stretch and break together.
 //
+// The store is the model's: built once with the body and never written after. What breaking
+// changes (each bond's live stiffness, its broken flag) is the body's state, BondState
+// (bond_state.h), whose stiffness starts as a copy of the coefficients here.
+//
 // The force loop streams these arrays every step, so a stored direction holds only what it
 // must: the neighbour as an offset j - i (2 bytes; the int32 index stays beside it for everything
-// else), the stiffness in single precision (4 bytes: a relative rounding of 6e-8 of a material
+// else), the stiffness (from BondState) in single precision (4 bytes: a relative rounding of 6e-8 of a material
 // constant, the same for both copies, so forces stay equal and opposite) and the squared grid
 // offset di^2 + dj^2 (1 byte), from which the reference length follows exactly as
 // grid_spacing sqrt(di^2 + dj^2). A reference length itself stays in double precision: rounding it
@@ -18,7 +22,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 namespace periflex {
@@ -28,11 +31,9 @@ struct BondStore {
   std::vector<int32_t> neighbor;       // j of each bond
   std::vector<int16_t> neighbor_offset;  // j - i of each bond; empty when some |j - i| > 32767
   std::vector<uint8_t> length_class;   // di^2 + dj^2 of the grid offset from i to j (<= 255)
-  std::vector<float> stiffness;        // k = c w(|xi|) beta g V_i V_j [N]: pair force = k s; 0 once broken
-  std::vector<uint8_t> broken;         // 1 once broken (never heals while stepping)
-  // (bond, stiffness before it broke) of every broken stored direction: a restored earlier state
-  // heals its bonds from it (16 bytes per broken direction, nothing before fracture)
-  std::vector<std::pair<int64_t, float>> broken_stiffness;
+  // the law's coefficient of each intact stored direction (bond-based: k = c w(|xi|) beta g V_i V_j
+  // [N], pair force = k s; the LPS: the weight w beta V_i V_j / V^2)
+  std::vector<float> coefficient;
   double grid_spacing = 1.0;
   std::vector<double> inv_length_table;  // 1 / |xi| per length class (index = di^2 + dj^2)
   std::vector<double> bond_inv_length;   // 1 / |xi| of each stored direction off the grid; empty on it
@@ -79,11 +80,9 @@ struct BondStore {
   size_t bytes() const {
     return row.capacity() * sizeof(int64_t) + neighbor.capacity() * sizeof(int32_t) +
            neighbor_offset.capacity() * sizeof(int16_t) + length_class.capacity() * sizeof(uint8_t) +
-           stiffness.capacity() * sizeof(float) +
-           broken.capacity() * sizeof(uint8_t) + inv_length_table.capacity() * sizeof(double) +
+           coefficient.capacity() * sizeof(float) + inv_length_table.capacity() * sizeof(double) +
            bond_inv_length.capacity() * sizeof(double) +
-           (particle_s0.capacity() + row_s0.capacity()) * sizeof(double) +
-           broken_stiffness.capacity() * sizeof(std::pair<int64_t, float>);
+           (particle_s0.capacity() + row_s0.capacity()) * sizeof(double);
   }
 };
 

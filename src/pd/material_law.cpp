@@ -7,8 +7,8 @@
 
 namespace periflex {
 
-long MaterialLaw::add_forces_breaking(BondStore&, const LawEvaluation&, const uint8_t*, std::vector<uint8_t>&,
-                                      double, double&) {
+long MaterialLaw::add_forces_breaking(const BondStore&, BondState&, const LawEvaluation&, const uint8_t*,
+                                      std::vector<uint8_t>&, double, double&) {
   return 0;
 }
 

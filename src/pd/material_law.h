@@ -2,7 +2,8 @@
 // PdBody owns one law and runs it through the loops every law shares (pd_body.cpp: forces and
 // loads; pd_fracture.cpp: the break pass, the knife, saving the state; pd_body_fields.cpp: damage
 // and stretch for drawing); the law answers what differs:
-//   - its coefficients: what BondStore::stiffness means for it, set once at build,
+//   - its coefficients: what BondStore::coefficient (and so BondState::stiffness) means for it,
+//     set once at build,
 //   - its bond loops: forces (with its optional pre-pass, the LPS dilatation), strain energy,
 //     damping power, energy density, the stable step,
 //   - its break test, run once per accepted step (break_bonds), and the fields it keeps per
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "pd/bond_kernel.h"
+#include "pd/bond_state.h"
 #include "pd/bond_store.h"
 #include "pd/flex_state.h"
 #include "pd/particle_grid.h"
@@ -67,29 +69,31 @@ class MaterialLaw {
   // ---- set-up
   // Critical stretch s0 where bonds start to fail (infinite: they never do).
   virtual double critical_stretch() const = 0;
-  // Writes the law's coefficient of each stored direction into bonds.stiffness (and the fields
-  // that follow from them).
+  // Writes the law's coefficient of each stored direction into bonds.coefficient (and the fields
+  // that follow from them). Every other call takes the store as the model's: const.
   virtual void set_coefficients(const LawSetup& setup, BondStore& bonds) = 0;
-  // A stable step of explicit integration, min over particles.
-  virtual double critical_time_step(const BondStore& bonds, const std::vector<double>& masses) const = 0;
+  // A stable step of explicit integration over the bonds intact in `live`, min over particles.
+  virtual double critical_time_step(const BondStore& bonds, const BondState& live,
+                                    const std::vector<double>& masses) const = 0;
 
   // ---- evaluation
   // Adds the bond forces (bond damping included) to e.force.
-  virtual void add_forces(const BondStore& bonds, const LawEvaluation& e) = 0;
+  virtual void add_forces(const BondStore& bonds, const BondState& live, const LawEvaluation& e) = 0;
   // True when the law can break bonds inside a force evaluation (add_forces_breaking).
   virtual bool breaks_in_evaluation() const { return false; }
   // As add_forces, leaving out and breaking the bonds past s0 (see add_bond_forces_breaking);
   // returns the pairs broken, energy the energy booked for them. Only when breaks_in_evaluation().
-  virtual long add_forces_breaking(BondStore& bonds, const LawEvaluation& e, const uint8_t* no_fail,
-                                   std::vector<uint8_t>& row_broke, double half_kick, double& energy);
+  virtual long add_forces_breaking(const BondStore& bonds, BondState& live, const LawEvaluation& e,
+                                   const uint8_t* no_fail, std::vector<uint8_t>& row_broke, double half_kick,
+                                   double& energy);
   // Strain energy [J], summed in a fixed order (the same bits on any thread count).
-  virtual double strain_energy(const BondStore& bonds, const double* pos) const = 0;
+  virtual double strain_energy(const BondStore& bonds, const BondState& live, const double* pos) const = 0;
   // Power the bond damping removes [W] (eta_over_e > 0).
-  virtual double damping_power(const BondStore& bonds, const double* pos, const double* vel,
-                               double eta_over_e) const = 0;
+  virtual double damping_power(const BondStore& bonds, const BondState& live, const double* pos,
+                               const double* vel, double eta_over_e) const = 0;
   // Strain energy density [J/m^3] of each particle into out (n entries).
-  virtual void energy_density(const BondStore& bonds, const double* pos, const std::vector<double>& volumes,
-                              double* out) const = 0;
+  virtual void energy_density(const BondStore& bonds, const BondState& live, const double* pos,
+                              const std::vector<double>& volumes, double* out) const = 0;
   // True when a particle's force depends on the particles two intact bonds away (the dilatation of
   // its neighbours), not only on those it is bonded to.
   virtual bool reaches_second_neighbours() const { return false; }
@@ -98,10 +102,12 @@ class MaterialLaw {
   // The break test at accepted positions pos: breaks what the law says is broken (never at a
   // particle flagged in no_fail, which may be null); row_max, when not null, comes from a force
   // evaluation at exactly these positions.
-  virtual BreakResult break_bonds(BondStore& bonds, const double* pos, const uint8_t* no_fail,
-                                  const double* row_max) = 0;
+  virtual BreakResult break_bonds(const BondStore& bonds, BondState& live, const double* pos,
+                                  const uint8_t* no_fail, const double* row_max) = 0;
   // The knife broke bonds of these particles (sorted, maybe repeated).
-  virtual void bonds_cut(const BondStore& bonds, std::vector<int>& particles) { (void)bonds, (void)particles; }
+  virtual void bonds_cut(const BondStore& bonds, const BondState& live, std::vector<int>& particles) {
+    (void)bonds, (void)live, (void)particles;
+  }
 
   // ---- state: the fields the law keeps, saved with the body's broken bonds
   virtual void save(FlexState& out) const { (void)out; }

@@ -41,6 +41,7 @@ const std::vector<std::string>& PdBody::warnings() const { return impl_->warning
 double PdBody::micromodulus() const { return impl_->c; }
 double PdBody::critical_stretch() const { return impl_->s0; }
 const BondStore& PdBody::bonds() const { return impl_->bonds; }
+const BondState& PdBody::bond_state() const { return impl_->live; }
 std::vector<PrescribedCoordinate> PdBody::prescribed_coordinates() const { return impl_->prescribed; }
 
 std::vector<double> PdBody::initial_velocities() const {
@@ -55,7 +56,8 @@ std::vector<double> PdBody::initial_velocities() const {
   return v;
 }
 
-double PdBody::critical_time_step() const { return impl_->law->critical_time_step(impl_->bonds, impl_->mass); }
+double PdBody::critical_time_step() const { return impl_->law->critical_time_step(impl_->bonds, impl_->live,
+                                  impl_->mass); }
 
 void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, double t, Eigen::VectorXd& g) {
   Impl& m = *impl_;
@@ -74,7 +76,8 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
     m.stretch_cache_valid = false;
     double energy = 0.0;
     const double half_kick = t == m.step_end ? m.half_kick : 0.0;
-    const long broken = m.law->add_forces_breaking(m.bonds, e, m.no_fail_flags(), m.row_broke, half_kick, energy);
+    const long broken = m.law->add_forces_breaking(m.bonds, m.live, e, m.no_fail_flags(), m.row_broke, half_kick,
+                                                   energy);
     m.pending_broken += broken;
     m.pending_energy += energy;
     m.broken_pairs += broken;
@@ -85,9 +88,9 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
     m.stretch_cache_valid = true;
     e.row_max = m.stretch_cache_most.data();
     e.pos_copy = m.stretch_cache_pos.data();
-    m.law->add_forces(m.bonds, e);
+    m.law->add_forces(m.bonds, m.live, e);
   } else {
-    m.law->add_forces(m.bonds, e);
+    m.law->add_forces(m.bonds, m.live, e);
   }
 
   // mass-proportional damping -alpha m v
@@ -128,7 +131,7 @@ bool PdBody::add_coupling(const Eigen::VectorXd&, SparsityPattern& pattern) cons
     for (int i = 0; i < m.n(); ++i) {
       couple(i, i);
       for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b)
-        if (!bonds.broken[b]) couple(i, bonds.neighbor[b]);
+        if (!m.live.broken[b]) couple(i, bonds.neighbor[b]);
     }
     return true;
   }
@@ -142,18 +145,18 @@ bool PdBody::add_coupling(const Eigen::VectorXd&, SparsityPattern& pattern) cons
     };
     reach(i);
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-      if (bonds.broken[b]) continue;
+      if (m.live.broken[b]) continue;
       const int j = bonds.neighbor[b];
       reach(j);
       for (int64_t d = bonds.row[j]; d < bonds.row[j + 1]; ++d)
-        if (!bonds.broken[d]) reach(bonds.neighbor[d]);
+        if (!m.live.broken[d]) reach(bonds.neighbor[d]);
     }
   }
   return true;
 }
 
 double PdBody::potential_energy(const Eigen::VectorXd& q) const {
-  return impl_->law->strain_energy(impl_->bonds, impl_->pos(q));
+  return impl_->law->strain_energy(impl_->bonds, impl_->live, impl_->pos(q));
 }
 
 double PdBody::dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd& qd) const {
@@ -161,7 +164,7 @@ double PdBody::dissipation_power(const Eigen::VectorXd& q, const Eigen::VectorXd
   const double* vel = qd.data() + m.offset;
   double power = 0.0;
   const double eta_over_e = m.bond_damping / m.def.material.youngs_modulus;
-  if (eta_over_e > 0.0) power += m.law->damping_power(m.bonds, m.pos(q), vel, eta_over_e);
+  if (eta_over_e > 0.0) power += m.law->damping_power(m.bonds, m.live, m.pos(q), vel, eta_over_e);
   if (m.global_damping > 0.0) {
     for (int i = 0; i < m.n(); ++i)
       power += m.global_damping * m.mass[i] * (vel[2 * i] * vel[2 * i] + vel[2 * i + 1] * vel[2 * i + 1]);

@@ -16,6 +16,7 @@
 
 #include "core/time_function.h"
 #include "mbs/force_element.h"
+#include "pd/bond_state.h"
 #include "pd/bond_store.h"
 #include "pd/flex_state.h"
 #include "scene/scene_def.h"
@@ -114,8 +115,8 @@ class PdBody : public ForceElement {
   const BondForceDevice* bond_force_device() const;
 
   // The broken bonds and the law's own fields (weighted volumes, bond histories), for saving a
-  // state; a restore heals the bonds broken since (from BondStore::broken_stiffness) and breaks
-  // the ones the state has broken.
+  // state; a restore sets every bond's flag and stiffness from the state's bits and the model's
+  // coefficients (bond_state.h), whatever broke since.
   void save_state(FlexState& out) const;
   // Throws std::invalid_argument when the state belongs to a body with other bonds.
   void restore_state(const FlexState& in);
@@ -149,8 +150,10 @@ class PdBody : public ForceElement {
   // (infinite when neither fracture_energy nor critical_stretch was given).
   double micromodulus() const;
   double critical_stretch() const;
-  // The bond arrays (CSR, both directions), for tests, benchmarks and diagnostics.
+  // The bond arrays (CSR, both directions), for tests, benchmarks and diagnostics: the model's,
+  // never changed after the build; which bonds are broken now is bond_state()'s.
   const BondStore& bonds() const;
+  const BondState& bond_state() const;
   // Strain energy density [J/m^3] of each particle at q, as the law defines it: (1/V_i) sum_j
   // k |xi| s^2 / 4 bond-based, the LPS energy density W_i state-based.
   void strain_energy_density(const Eigen::VectorXd& q, std::vector<double>& out) const;

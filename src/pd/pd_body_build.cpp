@@ -189,7 +189,6 @@ void make_bonds(PdBody::Impl& m, const ParticleMaterials& materials, std::vector
   });
   bonds.make_length_table();
   bonds.make_offsets();
-  bonds.broken.assign(bonds.neighbor.size(), 0);
 }
 
 // Region loads: imposed motions become prescribed coordinates, tractions and body forces
@@ -339,6 +338,7 @@ std::unique_ptr<PdBody> PdBody::build(const FlexBodyDef& def, int coordinate_off
   m->law->set_coefficients(LawSetup{def, m->grid, m->c, m->delta, v, volumes, k0, nx2, m->no_fail_flags(), moduli},
                            m->bonds);
   set_break_stretches(materials, m->bonds);
+  m->live = BondState::intact(m->bonds);
   collect_loads(*m);
 
   m->bond_damping = def.bond_damping;

@@ -15,7 +15,7 @@ void PdBody::use_bond_force_device(std::unique_ptr<BondForceDevice> device) {
   if (m.def.material.model != PdMaterialDef::Model::kBondBased)
     throw std::invalid_argument("flexible body '" + m.def.name +
                                 "': only the bond-based law (material.model = \"bond_based\") runs on the GPU");
-  if (device) device->upload(m.bonds, m.no_fail_flags(), m.reference.data());
+  if (device) device->upload(m.bonds, m.live, m.no_fail_flags(), m.reference.data());
   m.device = std::move(device);
   m.stretch_cache_valid = false;
 }
@@ -36,10 +36,10 @@ void add_device_bond_forces(PdBody::Impl& m, const LawEvaluation& law_eval, doub
     e.breaking = true;
     e.s0 = m.s0;
     e.row_broke = m.row_broke.data();
-    m.device->add_forces(m.bonds, e);
+    m.device->add_forces(m.bonds, m.live, e);
     double energy = 0.0;
     const double half_kick = t == m.step_end ? m.half_kick : 0.0;
-    const long broken = settle_broken_bonds(m.bonds, e.pos, e.vel, half_kick, m.row_broke.data(), energy);
+    const long broken = settle_broken_bonds(m.bonds, m.live, e.pos, e.vel, half_kick, m.row_broke.data(), energy);
     m.pending_broken += broken;
     m.pending_energy += energy;
     m.broken_pairs += broken;
@@ -49,9 +49,9 @@ void add_device_bond_forces(PdBody::Impl& m, const LawEvaluation& law_eval, doub
     m.stretch_cache_most.resize(m.n());
     m.stretch_cache_valid = true;
     e.row_max = m.stretch_cache_most.data();
-    m.device->add_forces(m.bonds, e);
+    m.device->add_forces(m.bonds, m.live, e);
   } else {
-    m.device->add_forces(m.bonds, e);
+    m.device->add_forces(m.bonds, m.live, e);
   }
 }
 

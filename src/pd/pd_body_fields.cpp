@@ -17,7 +17,7 @@ void PdBody::damage(std::vector<float>& out) const {
   parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
     for (int64_t i = begin; i < end; ++i) {
       double intact = 0.0;
-      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += b.broken[k] ? 0.0 : m.weight_of(k);
+      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += m.live.broken[k] ? 0.0 : m.weight_of(k);
       const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
       out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
     }
@@ -26,13 +26,13 @@ void PdBody::damage(std::vector<float>& out) const {
 
 void PdBody::max_stretch(const Eigen::VectorXd& q, std::vector<float>& out) const {
   out.resize(impl_->n());
-  max_bond_stretch(impl_->bonds, impl_->pos(q), out.data());
+  max_bond_stretch(impl_->bonds, impl_->live, impl_->pos(q), out.data());
 }
 
 void PdBody::strain_energy_density(const Eigen::VectorXd& q, std::vector<double>& out) const {
   const Impl& m = *impl_;
   out.resize(m.n());
-  m.law->energy_density(m.bonds, m.pos(q), m.volume, out.data());
+  m.law->energy_density(m.bonds, m.live, m.pos(q), m.volume, out.data());
 }
 
 size_t PdBody::memory_bytes() const {
@@ -41,7 +41,7 @@ size_t PdBody::memory_bytes() const {
                                       m.grid.x.capacity() + m.grid.y.capacity() + m.initial_weight.capacity() +
                                       m.stretch_cache_pos.capacity() + m.stretch_cache_most.capacity();
   const size_t per_particle_bytes = m.no_fail.capacity() + m.row_broke.capacity();
-  return m.bonds.bytes() + per_particle_doubles * sizeof(double) +
+  return m.bonds.bytes() + m.live.bytes() + per_particle_doubles * sizeof(double) +
          (m.grid.ix.capacity() + m.grid.iy.capacity()) * sizeof(int32_t) + per_particle_bytes +
          m.law->memory_bytes();
 }
@@ -71,10 +71,11 @@ std::vector<int> PdBody::particles_in(const ShapeDef& region) const {
 
 void PdBody::bond_pairs(std::vector<std::pair<int, int>>& out, size_t max_pairs) const {
   const BondStore& b = impl_->bonds;
+  const std::vector<uint8_t>& broken = impl_->live.broken;
   out.clear();
   for (int i = 0; i < b.particle_count(); ++i) {
     for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) {
-      if (b.broken[k] || b.neighbor[k] <= i) continue;
+      if (broken[k] || b.neighbor[k] <= i) continue;
       if (out.size() >= max_pairs) {
         out.clear();
         return;

@@ -13,6 +13,7 @@
 
 #include "core/time_function.h"
 #include "pd/bond_force_device.h"
+#include "pd/bond_state.h"
 #include "pd/bond_store.h"
 #include "pd/material_law.h"
 #include "pd/particle_grid.h"
@@ -36,7 +37,8 @@ struct PdBody::Impl {
   int offset = 0;
   ParticleGrid grid;
   std::vector<double> reference, mass, volume;
-  BondStore bonds;
+  BondStore bonds;                       // the model's: written by the build alone
+  BondState live;                        // what breaking changes (each bond's stiffness and flag)
   std::vector<uint8_t> no_fail;          // 1: bonds at this particle never break
   std::vector<double> initial_weight;    // sum of partial-volume factors of the initial bonds
   std::vector<double> class_weight;      // partial-volume factor per bond length class (on the grid)
@@ -49,7 +51,7 @@ struct PdBody::Impl {
   bool fracture = false;
   double bond_damping = 0.0, global_damping = 0.0;
   long broken_pairs = 0;
-  // the material law: what bonds.stiffness means, the bond loops, the break test (material_law.h)
+  // the material law: what bonds.coefficient means, the bond loops, the break test (material_law.h)
   std::unique_ptr<MaterialLaw> law;
   std::vector<PrescribedCoordinate> prescribed;
   std::vector<AppliedLoad> loads;

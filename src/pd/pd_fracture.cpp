@@ -5,7 +5,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/parallel_chunks.h"
 #include "pd/pd_body_impl.h"
 
 namespace periflex {
@@ -33,7 +32,7 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
                       std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
   m.stretch_cache_valid = false;
   const BreakResult broke =
-      m.law->break_bonds(m.bonds, m.pos(q), m.no_fail_flags(), cached ? m.stretch_cache_most.data() : nullptr);
+      m.law->break_bonds(m.bonds, m.live, m.pos(q), m.no_fail_flags(), cached ? m.stretch_cache_most.data() : nullptr);
   if (broke.pairs > 0) m.bonds_changed_on_host();
   m.broken_pairs += broke.pairs;
   update.bonds_broken += broke.pairs;
@@ -49,31 +48,25 @@ FractureUpdate PdBody::cut_bonds(const Eigen::VectorXd& q, const std::vector<dou
   const double* p = positions.size() == 2 * static_cast<size_t>(m.n()) ? positions.data() : m.pos(q);
   const double before = potential_energy(q);
   // each pair once (i < j), both stored directions broken together
-  BondStore& bonds = m.bonds;
+  const BondStore& bonds = m.bonds;
+  BondState& live = m.live;
   std::vector<int> touched;
   for (int i = 0; i < m.n(); ++i) {
     const Vec2 pi(p[2 * i], p[2 * i + 1]);
     for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) {
       const int j = bonds.neighbor[k];
-      if (j <= i || bonds.broken[k]) continue;
+      if (j <= i || live.broken[k]) continue;
       if (!notch_cuts_bond(pi, Vec2(p[2 * j], p[2 * j + 1]), a, b, 1e-9 * m.dx * m.dx)) continue;
-      // the stiffness is kept, as for a bond that breaks under load: a restored state heals it
-      bonds.broken_stiffness.emplace_back(k, bonds.stiffness[k]);
-      bonds.broken[k] = 1;
-      bonds.stiffness[k] = 0.0f;
-      for (int64_t r = bonds.row[j]; r < bonds.row[j + 1]; ++r) {
-        if (bonds.neighbor[r] != i) continue;
-        bonds.broken_stiffness.emplace_back(r, bonds.stiffness[r]);
-        bonds.broken[r] = 1;
-        bonds.stiffness[r] = 0.0f;
-      }
+      live.break_bond(k);
+      for (int64_t r = bonds.row[j]; r < bonds.row[j + 1]; ++r)
+        if (bonds.neighbor[r] == i) live.break_bond(r);
       ++update.bonds_broken;
       if (touched.empty() || touched.back() != i) touched.push_back(i);
       touched.push_back(j);
     }
   }
   if (update.bonds_broken == 0) return update;
-  m.law->bonds_cut(m.bonds, touched);
+  m.law->bonds_cut(m.bonds, m.live, touched);
   m.bonds_changed_on_host();
   m.stretch_cache_valid = false;
   m.broken_pairs += update.bonds_broken;
@@ -84,21 +77,7 @@ FractureUpdate PdBody::cut_bonds(const Eigen::VectorXd& q, const std::vector<dou
 
 void PdBody::save_state(FlexState& out) const {
   const Impl& m = *impl_;
-  const BondStore& b = m.bonds;
-  // the broken flags as bits, 64 stored directions to a word
-  const int64_t count = b.directed_count();
-  out.broken_bits.assign(static_cast<size_t>((count + 63) / 64), 0);
-  uint64_t* bits = out.broken_bits.data();
-  const uint8_t* broken = b.broken.data();
-  const int64_t words = static_cast<int64_t>(out.broken_bits.size());
-  parallel_chunks(words, [&](int64_t, int64_t begin, int64_t end) {
-    for (int64_t w = begin; w < end; ++w) {
-      uint64_t word = 0;
-      const int64_t last = std::min<int64_t>(64, count - 64 * w);
-      for (int64_t k = 0; k < last; ++k) word |= static_cast<uint64_t>(broken[64 * w + k] != 0) << k;
-      bits[w] = word;
-    }
-  });
+  m.live.save_bits(out.broken_bits);
   out.broken_pairs = m.broken_pairs;
   out.pending_broken = m.pending_broken;
   out.pending_energy = m.pending_energy;
@@ -111,36 +90,10 @@ void PdBody::save_state(FlexState& out) const {
 
 void PdBody::restore_state(const FlexState& in) {
   Impl& m = *impl_;
-  BondStore& b = m.bonds;
-  const int64_t count = b.directed_count();
+  const int64_t count = m.bonds.directed_count();
   if (in.broken_bits.size() != static_cast<size_t>((count + 63) / 64) || !m.law->state_fits(in, m.n(), count))
     throw std::invalid_argument("state of flexible body '" + m.def.name + "' does not match its bonds");
-  // bonds broken now but intact in the state heal to the stiffness they had
-  const uint64_t* bits = in.broken_bits.data();
-  const auto broken_in_state = [&](int64_t k) { return ((bits[k / 64] >> (k % 64)) & 1u) != 0; };
-  std::vector<std::pair<int64_t, float>> kept;
-  kept.reserve(b.broken_stiffness.size());
-  for (const auto& [k, stiffness] : b.broken_stiffness) {
-    if (broken_in_state(k)) {
-      kept.push_back({k, stiffness});
-    } else {
-      b.broken[k] = 0;
-      b.stiffness[k] = stiffness;
-    }
-  }
-  // bonds broken in the state but intact now break, keeping their stiffness (whole words of
-  // intact bonds are skipped: before fracture this is a pass over the bits alone)
-  for (size_t w = 0; w < in.broken_bits.size(); ++w) {
-    if (in.broken_bits[w] == 0) continue;
-    const int64_t end = std::min<int64_t>(64 * static_cast<int64_t>(w) + 64, count);
-    for (int64_t k = 64 * static_cast<int64_t>(w); k < end; ++k) {
-      if (!broken_in_state(k) || b.broken[k]) continue;
-      kept.push_back({k, b.stiffness[k]});
-      b.broken[k] = 1;
-      b.stiffness[k] = 0.0f;
-    }
-  }
-  b.broken_stiffness = std::move(kept);
+  m.live.restore_bits(m.bonds, in.broken_bits);
   m.broken_pairs = in.broken_pairs;
   m.pending_broken = in.pending_broken;
   m.pending_energy = in.pending_energy;

@@ -163,7 +163,8 @@ bool use_avx512(const BondStore& bonds) {
 #endif
 
 // W_i of rows [begin, end) into out
-void energy_rows(int begin, int end, const BondStore& bonds, const LpsFields& lps, const double* pos,
+void energy_rows(int begin, int end, const BondStore& bonds, const BondState& live, const LpsFields& lps,
+                 const double* pos,
                  double* out) {
   for (int i = begin; i < end; ++i) {
     const double m = lps.weighted_volume[i];
@@ -177,7 +178,7 @@ void energy_rows(int begin, int end, const BondStore& bonds, const LpsFields& lp
       const int32_t j = bonds.neighbor[b];
       const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
       const double x0 = ref_length(bonds, b);
-      sum += double(bonds.stiffness[b]) * x0 * (std::sqrt(dx * dx + dy * dy) - x0);
+      sum += double(live.stiffness[b]) * x0 * (std::sqrt(dx * dx + dy * dy) - x0);
     }
     const double theta = 2.0 * lps.volume * sum / m;
     double dev = 0.0;
@@ -186,7 +187,7 @@ void energy_rows(int begin, int end, const BondStore& bonds, const LpsFields& lp
       const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
       const double x0 = ref_length(bonds, b);
       const double ed = std::sqrt(dx * dx + dy * dy) - x0 - 0.5 * theta * x0;
-      dev += double(bonds.stiffness[b]) * ed * ed;
+      dev += double(live.stiffness[b]) * ed * ed;
     }
     out[i] = 0.5 * lps.kappa * theta * theta + 4.0 * lps.shear_modulus[i] / m * lps.volume * dev;
   }
@@ -196,19 +197,20 @@ void energy_rows(int begin, int end, const BondStore& bonds, const LpsFields& lp
 
 void set_state_based_avx512(bool enabled) { wide_loops = enabled; }
 
-void refresh_weighted_volumes(const BondStore& bonds, LpsFields& lps, const std::vector<int>& particles) {
+void refresh_weighted_volumes(const BondStore& bonds, const BondState& live, LpsFields& lps,
+                              const std::vector<int>& particles) {
   for (int i : particles) {
     double sum = 0.0;
     for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
       const double x0 = ref_length(bonds, b);
-      sum += double(bonds.stiffness[b]) * x0 * x0;
+      sum += double(live.stiffness[b]) * x0 * x0;
     }
     lps.weighted_volume[i] = lps.volume * sum;
     lps.shear_coef[i] = sum > 0.0 ? 8.0 * lps.shear_modulus[i] * lps.ratio(i) / lps.weighted_volume[i] : 0.0;
   }
 }
 
-void update_weighted_volumes(const BondStore& bonds, LpsFields& lps) {
+void update_weighted_volumes(const BondStore& bonds, const BondState& live, LpsFields& lps) {
   const int n = bonds.particle_count();
   if (lps.shear_modulus.size() != static_cast<size_t>(n)) lps.shear_modulus.assign(n, lps.mu);
   lps.weighted_volume.assign(n, 0.0);
@@ -218,20 +220,20 @@ void update_weighted_volumes(const BondStore& bonds, LpsFields& lps) {
   lps.records.assign(4 * static_cast<size_t>(n), 0.0);
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;
-  refresh_weighted_volumes(bonds, lps, all);
+  refresh_weighted_volumes(bonds, live, lps, all);
 }
 
-void compute_dilatations(const BondStore& bonds, LpsFields& lps, const double* pos) {
+void compute_dilatations(const BondStore& bonds, const BondState& live, LpsFields& lps, const double* pos) {
   const RowLoops& loops = row_loops();
   for_row_blocks(bonds.particle_count(), [&](int begin, int end) {
     loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
-                     l0_of(bonds), bonds.stiffness.data(), lps.weighted_volume.data(), lps.volume,
+                     l0_of(bonds), live.stiffness.data(), lps.weighted_volume.data(), lps.volume,
                      pos, lps.dilatation.data(), nullptr);
   });
 }
 
-void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double* pos, const double* vel,
-                            double eta_over_e, double* force, double* row_max, double* pos_copy) {
+void add_state_based_forces(const BondStore& bonds, const BondState& live, LpsFields& lps, const double* pos,
+                            const double* vel, double eta_over_e, double* force, double* row_max, double* pos_copy) {
   const int n = bonds.particle_count();
   // a_i = (2 kappa - 4 mu_i) theta_i / m_i
   const double twice_kappa = 2.0 * lps.kappa;
@@ -243,7 +245,7 @@ void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double
     const double v2 = lps.volume * lps.volume;
     for_row_blocks(n, [&](int begin, int end) {
       if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
-      lps_extension_sums_avx512(begin, end, bonds, pos, lps.dilatation.data(), row_max);
+      lps_extension_sums_avx512(begin, end, bonds, live, pos, lps.dilatation.data(), row_max);
       for (int i = begin; i < end; ++i) {
         const double m = lps.weighted_volume[i];
         lps.dilatation[i] = m > 0.0 ? 2.0 * lps.volume * lps.dilatation[i] / m : 0.0;
@@ -256,7 +258,7 @@ void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double
       }
     });
     for_row_blocks(n, [&](int begin, int end) {
-      lps_forces_avx512(begin, end, bonds, lps.records.data(), v2, force);
+      lps_forces_avx512(begin, end, bonds, live, lps.records.data(), v2, force);
     });
     return;
   }
@@ -265,7 +267,7 @@ void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double
   for_row_blocks(n, [&](int begin, int end) {
     if (pos_copy) std::copy(pos + 2 * begin, pos + 2 * end, pos_copy + 2 * begin);
     loops.dilatation(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
-                     l0_of(bonds), bonds.stiffness.data(), lps.weighted_volume.data(), lps.volume,
+                     l0_of(bonds), live.stiffness.data(), lps.weighted_volume.data(), lps.volume,
                      pos, lps.dilatation.data(), row_max);
     for (int i = begin; i < end; ++i) {
       const double m = lps.weighted_volume[i];
@@ -276,39 +278,41 @@ void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double
   const double v2 = lps.volume * lps.volume;
   for_row_blocks(n, [&](int begin, int end) {
     loops.force(begin, end, bonds.row.data(), bonds.neighbor.data(), cls_of(bonds),
-                l0_of(bonds), bonds.stiffness.data(), lps.bulk_coef.data(), lps.shear_coef.data(),
+                l0_of(bonds), live.stiffness.data(), lps.bulk_coef.data(), lps.shear_coef.data(),
                 v2, pos, eta_over_e > 0.0 ? vel : nullptr, eta_over_e, force);
   });
 }
 
-void state_based_energy_density(const BondStore& bonds, const LpsFields& lps, const double* pos,
+void state_based_energy_density(const BondStore& bonds, const BondState& live, const LpsFields& lps, const double* pos,
                                 double* out) {
-  for_row_blocks(bonds.particle_count(), [&](int begin, int end) { energy_rows(begin, end, bonds, lps, pos, out); });
+  for_row_blocks(bonds.particle_count(), [&](int begin, int end) { energy_rows(begin, end, bonds, live, lps, pos,
+                 out); });
 }
 
-double state_based_strain_energy(const BondStore& bonds, const LpsFields& lps, const double* pos) {
+double state_based_strain_energy(const BondStore& bonds, const BondState& live, const LpsFields& lps,
+                                 const double* pos) {
   // rows summed in fixed ranges and the ranges in order: the same bits on any thread count
   std::vector<double> density(bonds.particle_count());
   return ordered_sum(bonds.particle_count(), kRowParallelMin, [&](int64_t begin, int64_t end) {
-    energy_rows(static_cast<int>(begin), static_cast<int>(end), bonds, lps, pos, density.data());
+    energy_rows(static_cast<int>(begin), static_cast<int>(end), bonds, live, lps, pos, density.data());
     double sum = 0.0;
     for (int64_t i = begin; i < end; ++i) sum += density[i] * lps.ratio(static_cast<int>(i));
     return lps.volume * sum;
   });
 }
 
-double state_based_rows_energy(const BondStore& bonds, const LpsFields& lps, const double* pos,
+double state_based_rows_energy(const BondStore& bonds, const BondState& live, const LpsFields& lps, const double* pos,
                                const std::vector<int>& particles) {
   double sum = 0.0;
   std::vector<double> density(bonds.particle_count());
   for (int i : particles) {
-    energy_rows(i, i + 1, bonds, lps, pos, density.data());
+    energy_rows(i, i + 1, bonds, live, lps, pos, density.data());
     sum += density[i] * lps.ratio(i);
   }
   return lps.volume * sum;
 }
 
-double state_based_damping_power(const BondStore& bonds, const LpsFields& lps, const double* pos,
+double state_based_damping_power(const BondStore& bonds, const BondState& live, const LpsFields& lps, const double* pos,
                                  const double* vel, double eta_over_e) {
   // each pair is visited from both ends: half per visit
   const double v2 = lps.volume * lps.volume;
@@ -320,7 +324,7 @@ double state_based_damping_power(const BondStore& bonds, const LpsFields& lps, c
         const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
         const double rate = (dx * (vel[2 * j] - vel[2 * i]) + dy * (vel[2 * j + 1] - vel[2 * i + 1])) /
                             std::sqrt(dx * dx + dy * dy);
-        sum += 0.5 * v2 * double(bonds.stiffness[b]) * (lps.shear_coef[i] + lps.shear_coef[j]) * eta_over_e *
+        sum += 0.5 * v2 * double(live.stiffness[b]) * (lps.shear_coef[i] + lps.shear_coef[j]) * eta_over_e *
                rate * rate;
       }
     }
@@ -328,7 +332,7 @@ double state_based_damping_power(const BondStore& bonds, const LpsFields& lps, c
   });
 }
 
-double state_based_critical_time_step(const BondStore& bonds, const LpsFields& lps,
+double state_based_critical_time_step(const BondStore& bonds, const BondState& live, const LpsFields& lps,
                                       const std::vector<double>& masses) {
   // A_i / m_i per particle, A_i = max(2 kappa, 4 mu_i)
   std::vector<double> ratio(bonds.particle_count(), 0.0);
@@ -344,7 +348,7 @@ double state_based_critical_time_step(const BondStore& bonds, const LpsFields& l
       const double mj = lps.weighted_volume[bonds.neighbor[b]];
       if (!(mi > 0.0) || !(mj > 0.0)) continue;
       // k / |xi| of the bounding pair bond
-      sum += 2.0 * double(bonds.stiffness[b]) * v2 * (ratio[i] + ratio[bonds.neighbor[b]]);
+      sum += 2.0 * double(live.stiffness[b]) * v2 * (ratio[i] + ratio[bonds.neighbor[b]]);
     }
     if (sum > 0.0) dt = std::min(dt, std::sqrt(2.0 * masses[i] / sum));
   }

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pd/bond_state.h"
 #include "pd/bond_store.h"
 
 namespace periflex {
@@ -43,41 +44,44 @@ void set_state_based_avx512(bool enabled);
 
 // Fills weighted_volume and shear_coef from the intact bonds (and shear_modulus with mu where it is
 // empty); call again after bonds break.
-void update_weighted_volumes(const BondStore& bonds, LpsFields& lps);
+void update_weighted_volumes(const BondStore& bonds, const BondState& live, LpsFields& lps);
 
 // The same for the listed particles only (those whose bonds just broke).
-void refresh_weighted_volumes(const BondStore& bonds, LpsFields& lps, const std::vector<int>& particles);
+void refresh_weighted_volumes(const BondStore& bonds, const BondState& live, LpsFields& lps,
+                              const std::vector<int>& particles);
 
 // theta_i = (2 V / m_i) sum_j w beta |xi| e into lps.dilatation.
-void compute_dilatations(const BondStore& bonds, LpsFields& lps, const double* pos);
+void compute_dilatations(const BondStore& bonds, const BondState& live, LpsFields& lps, const double* pos);
 
 // force_i += sum_j f_ij e_ij (see above), plus, with eta_over_e > 0, a viscous pair force
 // V^2 w beta (b_i + b_j) eta_over_e de/dt along the bond. row_max and pos_copy as add_bond_forces
 // (the largest stretch over each row's intact bonds; a copy of pos).
-void add_state_based_forces(const BondStore& bonds, LpsFields& lps, const double* pos, const double* vel,
+void add_state_based_forces(const BondStore& bonds, const BondState& live, LpsFields& lps, const double* pos,
+                            const double* vel,
                             double eta_over_e, double* force, double* row_max = nullptr, double* pos_copy = nullptr);
 
 // Strain energy density W_i [J/m^3] of each particle into out (size n).
-void state_based_energy_density(const BondStore& bonds, const LpsFields& lps, const double* pos,
+void state_based_energy_density(const BondStore& bonds, const BondState& live, const LpsFields& lps, const double* pos,
                                 double* out);
 
 // Strain energy sum_i V W_i [J], summed in a fixed order (the same bits on any thread count).
-double state_based_strain_energy(const BondStore& bonds, const LpsFields& lps, const double* pos);
+double state_based_strain_energy(const BondStore& bonds, const BondState& live, const LpsFields& lps,
+                                 const double* pos);
 
 // Strain energy sum V W_i over the listed particles only [J]: breaking a bond changes the energy
 // of its two ends alone, so the energy a fracture update releases is this sum before minus after.
-double state_based_rows_energy(const BondStore& bonds, const LpsFields& lps, const double* pos,
+double state_based_rows_energy(const BondStore& bonds, const BondState& live, const LpsFields& lps, const double* pos,
                                const std::vector<int>& particles);
 
 // Power the viscous pair forces remove: sum over pairs V^2 w beta (b_i + b_j) eta_over_e (de/dt)^2.
-double state_based_damping_power(const BondStore& bonds, const LpsFields& lps, const double* pos,
+double state_based_damping_power(const BondStore& bonds, const BondState& live, const LpsFields& lps, const double* pos,
                                  const double* vel, double eta_over_e);
 
 // A stable step of explicit integration, min over particles: the energy is bounded by that of
 // pair bonds of stiffness k = 2 w beta |xi| V^2 (A_i / m_i + A_j / m_j), A_i = max(2 kappa, 4 mu_i) (the
 // bulk part by Cauchy-Schwarz, theta^2 <= (4 / m) sum w beta e^2 V), whose Silling & Askari bound
 // sqrt(2 m_i / sum_j k / |xi|) then holds for the LPS as well.
-double state_based_critical_time_step(const BondStore& bonds, const LpsFields& lps,
+double state_based_critical_time_step(const BondStore& bonds, const BondState& live, const LpsFields& lps,
                                       const std::vector<double>& masses);
 
 }  // namespace periflex

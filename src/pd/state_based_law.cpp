@@ -60,35 +60,37 @@ void StateBasedLaw::set_coefficients(const LawSetup& setup, BondStore& bonds) {
     for (size_t b = 0; b < k0.size(); ++b) weight[b] *= factors.bond[b];
     for (int i = 0; i < n; ++i) lps_.shear_modulus[i] = lps_.mu * factors.shear[i];
   }
-  bonds.stiffness.resize(k0.size());
-  for (size_t b = 0; b < k0.size(); ++b) bonds.stiffness[b] = static_cast<float>(weight[b]);
-  update_weighted_volumes(bonds, lps_);
+  bonds.coefficient.resize(k0.size());
+  for (size_t b = 0; b < k0.size(); ++b) bonds.coefficient[b] = static_cast<float>(weight[b]);
+  // the fields of the intact body: the body's live state starts from the same coefficients
+  update_weighted_volumes(bonds, BondState::intact(bonds), lps_);
 }
 
-double StateBasedLaw::critical_time_step(const BondStore& bonds, const std::vector<double>& masses) const {
-  return state_based_critical_time_step(bonds, lps_, masses);
+double StateBasedLaw::critical_time_step(const BondStore& bonds, const BondState& live,
+                                         const std::vector<double>& masses) const {
+  return state_based_critical_time_step(bonds, live, lps_, masses);
 }
 
-void StateBasedLaw::add_forces(const BondStore& bonds, const LawEvaluation& e) {
-  add_state_based_forces(bonds, lps_, e.pos, e.vel, e.eta_over_e, e.force, e.row_max, e.pos_copy);
+void StateBasedLaw::add_forces(const BondStore& bonds, const BondState& live, const LawEvaluation& e) {
+  add_state_based_forces(bonds, live, lps_, e.pos, e.vel, e.eta_over_e, e.force, e.row_max, e.pos_copy);
 }
 
-double StateBasedLaw::strain_energy(const BondStore& bonds, const double* pos) const {
-  return state_based_strain_energy(bonds, lps_, pos);
+double StateBasedLaw::strain_energy(const BondStore& bonds, const BondState& live, const double* pos) const {
+  return state_based_strain_energy(bonds, live, lps_, pos);
 }
 
-double StateBasedLaw::damping_power(const BondStore& bonds, const double* pos, const double* vel,
-                                    double eta_over_e) const {
-  return state_based_damping_power(bonds, lps_, pos, vel, eta_over_e);
+double StateBasedLaw::damping_power(const BondStore& bonds, const BondState& live, const double* pos,
+                                    const double* vel, double eta_over_e) const {
+  return state_based_damping_power(bonds, live, lps_, pos, vel, eta_over_e);
 }
 
-void StateBasedLaw::energy_density(const BondStore& bonds, const double* pos, const std::vector<double>&,
-                                   double* out) const {
-  state_based_energy_density(bonds, lps_, pos, out);
+void StateBasedLaw::energy_density(const BondStore& bonds, const BondState& live, const double* pos,
+                                   const std::vector<double>&, double* out) const {
+  state_based_energy_density(bonds, live, lps_, pos, out);
 }
 
-BreakResult StateBasedLaw::break_bonds(BondStore& bonds, const double* pos, const uint8_t* no_fail,
-                                       const double* row_max) {
+BreakResult StateBasedLaw::break_bonds(const BondStore& bonds, BondState& live, const double* pos,
+                                       const uint8_t* no_fail, const double* row_max) {
   // candidates: the rows whose largest stretch is near s0 (outside no-fail regions)
   const int n = bonds.particle_count();
   std::vector<int> candidates;
@@ -96,29 +98,29 @@ BreakResult StateBasedLaw::break_bonds(BondStore& bonds, const double* pos, cons
   std::vector<float> most;
   if (!row_max) {
     most.resize(n);
-    max_bond_stretch(bonds, pos, most.data());
+    max_bond_stretch(bonds, live, pos, most.data());
   }
   for (int i = 0; i < n; ++i) {
     const double top = row_max ? row_max[i] : double(most.empty() ? 0.0f : most[i]);
     // float row maxima (when not cached) are within 1e-7 relative of the exact ones
     if (top > s0_ * (1.0 - 1e-6) - 1e-12 && !(no_fail && no_fail[i])) candidates.push_back(i);
   }
-  if (!candidates.empty()) before = state_based_rows_energy(bonds, lps_, pos, candidates);
+  if (!candidates.empty()) before = state_based_rows_energy(bonds, live, lps_, pos, candidates);
   BreakResult result;
   double bond_energy = 0.0;
-  result.pairs = break_stretched_bonds(bonds, pos, s0_, no_fail, bond_energy, row_max);
+  result.pairs = break_stretched_bonds(bonds, live, pos, s0_, no_fail, bond_energy, row_max);
   if (result.pairs > 0) {
     // the weighted volumes count intact bonds only
-    refresh_weighted_volumes(bonds, lps_, candidates);
-    result.energy = before - state_based_rows_energy(bonds, lps_, pos, candidates);
+    refresh_weighted_volumes(bonds, live, lps_, candidates);
+    result.energy = before - state_based_rows_energy(bonds, live, lps_, pos, candidates);
   }
   return result;
 }
 
-void StateBasedLaw::bonds_cut(const BondStore& bonds, std::vector<int>& particles) {
+void StateBasedLaw::bonds_cut(const BondStore& bonds, const BondState& live, std::vector<int>& particles) {
   std::sort(particles.begin(), particles.end());
   particles.erase(std::unique(particles.begin(), particles.end()), particles.end());
-  refresh_weighted_volumes(bonds, lps_, particles);
+  refresh_weighted_volumes(bonds, live, lps_, particles);
 }
 
 void StateBasedLaw::save(FlexState& out) const {

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 
+#include "pd/bond_state.h"
 #include "pd/bond_store.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -17,12 +18,13 @@ namespace periflex {
 #ifdef PERIFLEX_HAVE_LPS_AVX512
 // sum[i] = sum_j w |xi| (|y| - |xi|) over row i, i in [begin, end); with most non-null, the largest
 // stretch over the row's intact bonds (-1 without any) to most[i].
-void lps_extension_sums_avx512(int begin, int end, const BondStore& bonds, const double* pos, double* sum,
-                               double* most);
+void lps_extension_sums_avx512(int begin, int end, const BondStore& bonds, const BondState& live, const double* pos,
+                               double* sum, double* most);
 // force_i += v2 sum_j w ((a_i + a_j) |xi| + (b_i + b_j) (|y| - |xi|)) y / |y|, with the records
 // [x_0 y_0 a_0 b_0 x_1 ...] (positions and coefficients of each particle in 32 bytes: a neighbour is
 // one load, not four gathered elements).
-void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* records, double v2, double* force);
+void lps_forces_avx512(int begin, int end, const BondStore& bonds, const BondState& live, const double* records,
+                       double v2, double* force);
 #endif
 
 }  // namespace periflex

@@ -42,22 +42,22 @@ struct Block {
   __m512d w;    // bond weight, 0 once broken or masked
 };
 
-PERIFLEX_LPS_AVX512 inline Block load_block(const BondStore& bonds, int64_t b, int64_t last) {
+PERIFLEX_LPS_AVX512 inline Block load_block(const BondStore& bonds, const BondState& live, int64_t b, int64_t last) {
   Block k;
   const int64_t left = last - b;
   k.mask = left >= 8 ? __mmask8(0xFF) : __mmask8((1u << left) - 1u);
   k.cls = _mm512_cvtepu8_epi64(_mm_maskz_loadu_epi8(__mmask16(k.mask), bonds.length_class.data() + b));
-  k.w = _mm512_cvtps_pd(_mm256_maskz_loadu_ps(k.mask, bonds.stiffness.data() + b));
+  k.w = _mm512_cvtps_pd(_mm256_maskz_loadu_ps(k.mask, live.stiffness.data() + b));
   return k;
 }
 
 // the bond arrays some rows past bond b, fetched ahead of the loop (bond_prefetch.h)
 template <bool kOffsets>
-inline void prefetch_bonds(const BondStore& bonds, int64_t b) {
+inline void prefetch_bonds(const BondStore& bonds, const BondState& live, int64_t b) {
   if constexpr (kOffsets)
-    prefetch_bonds_ahead(bonds.stiffness.data(), bonds.length_class.data(), bonds.neighbor_offset.data(), b);
+    prefetch_bonds_ahead(live.stiffness.data(), bonds.length_class.data(), bonds.neighbor_offset.data(), b);
   else
-    prefetch_bonds_ahead(bonds.stiffness.data(), bonds.length_class.data(), bonds.neighbor.data(), b);
+    prefetch_bonds_ahead(live.stiffness.data(), bonds.length_class.data(), bonds.neighbor.data(), b);
 }
 
 // Neighbour j of lane k of the block starting at bond b (the particle itself past the row's end).
@@ -95,12 +95,12 @@ struct TailBlock {
   __m256d w;
 };
 
-PERIFLEX_LPS_AVX512 inline TailBlock load_tail(const BondStore& bonds, int64_t b, int64_t left) {
+PERIFLEX_LPS_AVX512 inline TailBlock load_tail(const BondStore& bonds, const BondState& live, int64_t b, int64_t left) {
   TailBlock k;
   k.mask = __mmask8((1u << left) - 1u);
   const __m128i bytes = _mm_maskz_loadu_epi8(__mmask16(k.mask), bonds.length_class.data() + b);
   k.cls = _mm512_castsi256_si512(_mm256_cvtepu8_epi64(bytes));
-  k.w = _mm256_cvtps_pd(_mm_maskz_loadu_ps(k.mask, bonds.stiffness.data() + b));
+  k.w = _mm256_cvtps_pd(_mm_maskz_loadu_ps(k.mask, live.stiffness.data() + b));
   return k;
 }
 
@@ -119,10 +119,11 @@ PERIFLEX_LPS_AVX512 inline double lane_max(__m256d v) {
 // The last (at most four) bonds of a row in 256-bit vectors (see force_tail below): adds
 // w |xi| (|y| - |xi|) to acc and, with kTrack, folds the intact bonds' stretch into top.
 template <bool kTrack, bool kOffsets>
-PERIFLEX_LPS_AVX512 inline void extension_tail(const BondStore& bonds, const double* pos, const ClassTables& t,
+PERIFLEX_LPS_AVX512 inline void extension_tail(const BondStore& bonds, const BondState& live, const double* pos,
+                                               const ClassTables& t,
                                                int64_t b, int64_t last, int i, __m256d& acc, __m256d& top) {
   const int64_t left = last - b;
-  const TailBlock tail = load_tail(bonds, b, left);
+  const TailBlock tail = load_tail(bonds, live, b, left);
   const __m512i cls = tail.cls;
   const __m256d w = tail.w;
   const __m256d x0 = _mm512_castpd512_pd256(_mm512_permutex2var_pd(t.length_lo, cls, t.length_hi));
@@ -144,8 +145,8 @@ PERIFLEX_LPS_AVX512 inline void extension_tail(const BondStore& bonds, const dou
 }
 
 template <bool kTrack, bool kOffsets>
-PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bonds, const double* __restrict pos,
-                                        double* __restrict sum, double* __restrict most) {
+PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bonds, const BondState& live,
+                                        const double* __restrict pos, double* __restrict sum, double* __restrict most) {
   const ClassTables t = class_tables(bonds);
   const __m512d one = _mm512_set1_pd(1.0);
   for (int i = begin; i < end; ++i) {
@@ -153,13 +154,13 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
     __m512d acc = _mm512_setzero_pd(), top = _mm512_set1_pd(-1.0);
     __m256d acc4 = _mm256_setzero_pd(), top4 = _mm256_set1_pd(-1.0);
     const int64_t last = bonds.row[i + 1];
-    prefetch_bonds<kOffsets>(bonds, last);
+    prefetch_bonds<kOffsets>(bonds, live, last);
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
       if (last - b <= 4) {
-        extension_tail<kTrack, kOffsets>(bonds, pos, t, b, last, i, acc4, top4);
+        extension_tail<kTrack, kOffsets>(bonds, live, pos, t, b, last, i, acc4, top4);
         break;
       }
-      const Block k = load_block(bonds, b, last);
+      const Block k = load_block(bonds, live, b, last);
       __m512d xj, yj;
       load_points<kOffsets>(bonds, pos, b, last - b, i, xj, yj);
       const __m512d dx = _mm512_sub_pd(xj, xi), dy = _mm512_sub_pd(yj, yi);
@@ -181,17 +182,17 @@ PERIFLEX_LPS_AVX512 void extension_sums(int begin, int end, const BondStore& bon
 
 }  // namespace
 
-PERIFLEX_LPS_AVX512 void lps_extension_sums_avx512(int begin, int end, const BondStore& bonds, const double* pos,
-                                                   double* sum, double* most) {
+PERIFLEX_LPS_AVX512 void lps_extension_sums_avx512(int begin, int end, const BondStore& bonds, const BondState& live,
+                                                   const double* pos, double* sum, double* most) {
   const bool offsets = !bonds.neighbor_offset.empty();
   if (most && offsets)
-    extension_sums<true, true>(begin, end, bonds, pos, sum, most);
+    extension_sums<true, true>(begin, end, bonds, live, pos, sum, most);
   else if (most)
-    extension_sums<true, false>(begin, end, bonds, pos, sum, most);
+    extension_sums<true, false>(begin, end, bonds, live, pos, sum, most);
   else if (offsets)
-    extension_sums<false, true>(begin, end, bonds, pos, sum, most);
+    extension_sums<false, true>(begin, end, bonds, live, pos, sum, most);
   else
-    extension_sums<false, false>(begin, end, bonds, pos, sum, most);
+    extension_sums<false, false>(begin, end, bonds, live, pos, sum, most);
 }
 
 namespace {
@@ -228,10 +229,11 @@ PERIFLEX_LPS_AVX512 inline Neighbors load_neighbors(const BondStore& bonds, cons
 // so the half-empty block would cost as much as a full one. Adds the pair forces of bonds
 // [b, last) (before the factor V^2) to fx, fy.
 template <bool kOffsets>
-PERIFLEX_LPS_AVX512 inline void force_tail(const BondStore& bonds, const double* rec, const ClassTables& t, int64_t b,
+PERIFLEX_LPS_AVX512 inline void force_tail(const BondStore& bonds, const BondState& live, const double* rec,
+                                           const ClassTables& t, int64_t b,
                                            int64_t last, int i, __m256d& fx, __m256d& fy) {
   const int64_t left = last - b;
-  const TailBlock tail = load_tail(bonds, b, left);
+  const TailBlock tail = load_tail(bonds, live, b, left);
   const __mmask8 mask = tail.mask;
   const __m512i cls = tail.cls;
   const __m256d w = tail.w;
@@ -261,8 +263,8 @@ PERIFLEX_LPS_AVX512 inline void force_tail(const BondStore& bonds, const double*
 }
 
 template <bool kOffsets>
-PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, const double* __restrict rec, double v2,
-                                double* __restrict force) {
+PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, const BondState& live,
+                                const double* __restrict rec, double v2, double* __restrict force) {
   const ClassTables t = class_tables(bonds);
   const __m512d one = _mm512_set1_pd(1.0);
   for (int i = begin; i < end; ++i) {
@@ -272,13 +274,13 @@ PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, cons
     __m512d fx = _mm512_setzero_pd(), fy = _mm512_setzero_pd();
     __m256d tx = _mm256_setzero_pd(), ty = _mm256_setzero_pd();
     const int64_t last = bonds.row[i + 1];
-    prefetch_bonds<kOffsets>(bonds, last);
+    prefetch_bonds<kOffsets>(bonds, live, last);
     for (int64_t b = bonds.row[i]; b < last; b += 8) {
       if (last - b <= 4) {
-        force_tail<kOffsets>(bonds, rec, t, b, last, i, tx, ty);
+        force_tail<kOffsets>(bonds, live, rec, t, b, last, i, tx, ty);
         break;
       }
-      const Block k = load_block(bonds, b, last);
+      const Block k = load_block(bonds, live, b, last);
       const Neighbors nb = load_neighbors<kOffsets>(bonds, rec, b, last - b, i);
       const __m512d dx = _mm512_sub_pd(nb.x, xi), dy = _mm512_sub_pd(nb.y, yi);
       const __m512d r2 = _mm512_mask_blend_pd(k.mask, one, _mm512_fmadd_pd(dx, dx, _mm512_mul_pd(dy, dy)));
@@ -299,12 +301,12 @@ PERIFLEX_LPS_AVX512 void forces(int begin, int end, const BondStore& bonds, cons
 
 }  // namespace
 
-PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const double* records,
-                                           double v2, double* force) {
+PERIFLEX_LPS_AVX512 void lps_forces_avx512(int begin, int end, const BondStore& bonds, const BondState& live,
+                                           const double* records, double v2, double* force) {
   if (!bonds.neighbor_offset.empty())
-    forces<true>(begin, end, bonds, records, v2, force);
+    forces<true>(begin, end, bonds, live, records, v2, force);
   else
-    forces<false>(begin, end, bonds, records, v2, force);
+    forces<false>(begin, end, bonds, live, records, v2, force);
 }
 
 }  // namespace periflex

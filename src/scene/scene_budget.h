@@ -47,7 +47,7 @@ struct SceneBudget {
 // short run peaks at 12.9 MB).
 constexpr double kProgramBytes = 12e6;
 constexpr double kBytesPerParticle = 64.0;
-constexpr double kBytesPerNeighbor = 30.0;
+constexpr double kBytesPerNeighbor = 34.0;
 // A body off the grid keeps each stored neighbour's own 1 / |xi| and partial volume (pd/bond_store.h).
 constexpr double kBytesPerNeighborOffGrid = 16.0;
 // Stage vectors of an integrator, per particle, and the implicit integrators' tangent, per stored

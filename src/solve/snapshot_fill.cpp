@@ -136,6 +136,7 @@ void Simulation::fill_snapshot(Snapshot& out) const {
     out.strain.insert(out.strain.end(), buffer.begin(), buffer.end());
     // intact bonds of each particle, for the window's inspector
     const BondStore& bonds = flex->bonds();
+    const std::vector<uint8_t>& broken = flex->bond_state().broken;
     const size_t at = out.bonds_intact.size();
     const int n = flex->particle_count();
     out.bonds_intact.resize(at + n);
@@ -143,7 +144,7 @@ void Simulation::fill_snapshot(Snapshot& out) const {
     parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
       for (int64_t i = begin; i < end; ++i) {
         int64_t count = 0;
-        for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) count += bonds.broken[k] ? 0 : 1;
+        for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) count += broken[k] ? 0 : 1;
         intact[i] = static_cast<uint16_t>(std::min<int64_t>(count, 65535));
       }
     });

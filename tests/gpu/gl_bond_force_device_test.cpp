@@ -101,7 +101,7 @@ void expect_same_forces(BodyPair& pair, const Eigen::VectorXd& q, const Eigen::V
   EXPECT_LE(max_abs(gpu - cpu), tolerance * scale) << what << ": largest force " << scale;
   // the same bonds broken in the evaluation, with the same energy booked for them
   EXPECT_EQ(pair.gpu->broken_bond_count(), pair.cpu->broken_bond_count()) << what;
-  EXPECT_TRUE(pair.gpu->bonds().broken == pair.cpu->bonds().broken) << what;
+  EXPECT_TRUE(pair.gpu->bond_state().broken == pair.cpu->bond_state().broken) << what;
   const FractureUpdate cpu_breaks = pair.cpu->take_evaluation_breaks(), gpu_breaks = pair.gpu->take_evaluation_breaks();
   EXPECT_EQ(gpu_breaks.bonds_broken, cpu_breaks.bonds_broken) << what;
   EXPECT_EQ(gpu_breaks.energy_released, cpu_breaks.energy_released) << what;
@@ -203,7 +203,7 @@ TEST(GlBondForceDevice, RowMaximaGiveTheSameBreaksAfterTheStep) {
   EXPECT_GT(cpu.bonds_broken, 0);
   EXPECT_EQ(gpu.bonds_broken, cpu.bonds_broken);
   EXPECT_EQ(gpu.energy_released, cpu.energy_released);
-  EXPECT_TRUE(pair.gpu->bonds().broken == pair.cpu->bonds().broken);
+  EXPECT_TRUE(pair.gpu->bond_state().broken == pair.cpu->bond_state().broken);
   // the breaks made on the host reach the GPU's copy: the next forces leave them out alike
   expect_same_forces(pair, q, qd, "notched plate, after the break pass");
 }

@@ -95,7 +95,7 @@ TEST(BlockMaterials, ABondIsItsMaterialsOrItsTwoHalvesInSeries) {
       const int side_i = x[2 * i] > 0.0, side_j = x[2 * j] > 0.0;
       const int kind = side_i == side_j ? side_i : 2;
       const double ratio = kind == 0 ? 1.0 : kind == 1 ? 3.0 : across;
-      ASSERT_NEAR(a.stiffness[k] / (ratio * b.stiffness[k]), 1.0, 2e-7) << "particle " << i << " bond " << k;
+      ASSERT_NEAR(a.coefficient[k] / (ratio * b.coefficient[k]), 1.0, 2e-7) << "particle " << i << " bond " << k;
       ++counted[kind];
     }
   EXPECT_GT(counted[2], 100);  // bonds across the seam were checked
@@ -157,13 +157,14 @@ TEST(BlockMaterials, EachBondBreaksAtTheSmallerCriticalStretchOfItsEnds) {
       else
         body->update_fracture(q);
       const BondStore& bonds = body->bonds();
+      const std::vector<uint8_t>& flags = body->bond_state().broken;
       const std::vector<double>& x = body->reference_positions();
       long wrong = 0, broken = 0;
       for (int i = 0; i < body->particle_count(); ++i)
         for (int64_t k = bonds.row[i]; k < bonds.row[i + 1]; ++k) {
           const bool weak = x[2 * i] < 0.0 || x[2 * bonds.neighbor[k]] < 0.0;
-          wrong += (bonds.broken[k] != 0) != weak;
-          broken += bonds.broken[k] != 0;
+          wrong += (flags[k] != 0) != weak;
+          broken += flags[k] != 0;
         }
       EXPECT_EQ(wrong, 0) << (in_evaluation ? "in the evaluation" : "after the step") << ", loops " << int(loops);
       EXPECT_GT(broken, 1000);

@@ -79,7 +79,7 @@ TEST(PdElasticity, BondForcesAcrossACutRecoverYoungsModulus) {
       if (x[2 * j] < 0.0) continue;
       const double dxq = q[2 * j] - q[2 * i], dyq = q[2 * j + 1] - q[2 * i + 1];
       const double len = std::hypot(dxq, dyq);
-      fx += double(b.stiffness[k]) * (len * b.inv_length(k) - 1.0) * dxq / len;
+      fx += double(b.coefficient[k]) * (len * b.inv_length(k) - 1.0) * dxq / len;
     }
   }
   const double sigma = fx / (rows * dx * t);
@@ -96,7 +96,7 @@ TEST(PdElasticity, AffineFieldLeavesInteriorParticlesInEquilibrium) {
   Eigen::VectorXd g = Eigen::VectorXd::Zero(q.size());
   body->add_forces(q, Eigen::VectorXd::Zero(q.size()), 0.0, g);
   const int c = centre_particle(*body);
-  const double bond_force = body->bonds().stiffness[body->bonds().row[c]] * eps;
+  const double bond_force = body->bonds().coefficient[body->bonds().row[c]] * eps;
   EXPECT_LT(std::hypot(g[2 * c], g[2 * c + 1]), 1e-9 * bond_force * 36);
 }
 

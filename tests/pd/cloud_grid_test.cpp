@@ -44,7 +44,7 @@ TEST(CloudGrid, GridWrittenAsPointsBuildsTheSameBonds) {
   EXPECT_EQ(a.row, b.row);
   EXPECT_EQ(a.neighbor, b.neighbor);
   EXPECT_EQ(a.length_class, b.length_class);
-  EXPECT_EQ(a.stiffness, b.stiffness);
+  EXPECT_EQ(a.coefficient, b.coefficient);
   EXPECT_EQ(from_cloud->critical_time_step(), from_shape->critical_time_step());
 }
 

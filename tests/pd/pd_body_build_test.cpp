@@ -89,7 +89,7 @@ TEST(PdBonds, EveryBondIsStoredInBothDirectionsWithIdenticalData) {
       ASSERT_NE(it, end);
       const int64_t back = it - b.neighbor.begin();
       EXPECT_EQ(b.length_class[k], b.length_class[back]);
-      EXPECT_EQ(b.stiffness[k], b.stiffness[back]);
+      EXPECT_EQ(b.coefficient[k], b.coefficient[back]);
     }
   }
 }

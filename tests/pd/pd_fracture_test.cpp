@@ -31,7 +31,7 @@ TEST(PdFracture, TheBreakPassBreaksTheBondsPastS0AndBooksTheirEnergy) {
       const double s = std::sqrt(dx * dx + dy * dy) * b.inv_length(k) - 1.0;
       if (s <= s0) continue;
       ++expected_pairs;
-      expected_energy += 0.5 * double(b.stiffness[k]) * s * s / b.inv_length(k);
+      expected_energy += 0.5 * double(b.coefficient[k]) * s * s / b.inv_length(k);
     }
   }
   ASSERT_GT(expected_pairs, 0);

@@ -42,7 +42,7 @@ TEST(PdKnife, CutsTheBondsANotchRemovesAtSetUp) {
   EXPECT_EQ(knifed->broken_bond_count(), update.bonds_broken);
   EXPECT_EQ(intact_pairs(*knifed), intact_pairs(*notched));
   // both stored directions of every pair: as many broken in rows as pairs cut, twice
-  const BondStore& b = knifed->bonds();
+  const BondState& b = knifed->bond_state();
   long directed = 0;
   for (size_t k = 0; k < b.broken.size(); ++k) {
     directed += b.broken[k];

@@ -77,7 +77,7 @@ TEST(OffGrid, AJitterOfAlmostNothingGivesTheGridBodysBondsAndForces) {
   ASSERT_EQ(a.neighbor, b.neighbor);
   double worst_k = 0.0, worst_l = 0.0;
   for (int64_t k = 0; k < a.directed_count(); ++k) {
-    worst_k = std::max(worst_k, std::abs(double(b.stiffness[k]) / a.stiffness[k] - 1.0));
+    worst_k = std::max(worst_k, std::abs(double(b.coefficient[k]) / a.coefficient[k] - 1.0));
     worst_l = std::max(worst_l, std::abs(b.inv_length(k) / a.inv_length(k) - 1.0));
   }
   std::printf("moved by 1e-6 dx: stiffness within %.2e, lengths within %.2e\n", worst_k, worst_l);
@@ -100,7 +100,7 @@ TEST(OffGrid, PairsAreEqualAndOppositeAndTheBodyAtRestFeelsNothing) {
   const std::vector<int64_t> reverse = reverse_bonds(b);
   for (int64_t k = 0; k < b.directed_count(); ++k) {
     ASSERT_GE(reverse[k], 0);
-    ASSERT_EQ(b.stiffness[k], b.stiffness[reverse[k]]);
+    ASSERT_EQ(b.coefficient[k], b.coefficient[reverse[k]]);
     ASSERT_EQ(b.inv_length(k), b.inv_length(reverse[k]));
   }
   const Eigen::VectorXd rest = test::reference_q(*body);
@@ -154,7 +154,7 @@ TEST(OffGrid, TearingBreaksBothCopiesAndIsBitIdenticalOnOneAndTwoThreads) {
   for (int threads : {1, 2}) {
     const test::TornPlate torn = test::tear_plate(def, threads);
     positions.push_back(torn.q);
-    broken.push_back(torn.body->bonds().broken);
+    broken.push_back(torn.body->bond_state().broken);
     pairs = torn.body->broken_bond_count();
     const std::vector<int64_t> reverse = reverse_bonds(torn.body->bonds());
     long directed = 0;

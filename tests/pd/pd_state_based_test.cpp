@@ -101,7 +101,7 @@ TEST(PdStateBased, WideAndCompiledLoopsFindTheSameLargestStretch) {
   model.volume = body->volumes().at(0);
   model.kappa = 1e11;
   model.mu = 7e10;
-  update_weighted_volumes(bonds, model);
+  update_weighted_volumes(bonds, body->bond_state(), model);
   Eigen::VectorXd q = reference_q(*body);
   std::srand(5);
   const Eigen::VectorXd noise = Eigen::VectorXd::Random(q.size());
@@ -115,7 +115,7 @@ TEST(PdStateBased, WideAndCompiledLoopsFindTheSameLargestStretch) {
     set_state_based_avx512(wide);
     Eigen::VectorXd force = Eigen::VectorXd::Zero(q.size());
     most.assign(n, 0.0);
-    add_state_based_forces(bonds, model, q.data(), nullptr, 0.0, force.data(), most.data());
+    add_state_based_forces(bonds, body->bond_state(), model, q.data(), nullptr, 0.0, force.data(), most.data());
     set_state_based_avx512(true);
     return force;
   };
@@ -351,7 +351,7 @@ TEST(PdStateBased, TearingRunIsBitIdenticalOnOneAndTwoThreads) {
   for (int threads : {1, 2}) {
     const test::TornPlate torn = test::tear_plate(def, threads);
     positions.push_back(torn.q);
-    broken.push_back(torn.body->bonds().broken);
+    broken.push_back(torn.body->bond_state().broken);
     counts.push_back(torn.body->broken_bond_count());
   }
   std::printf("state-based tearing plate: %ld bonds broken\n", counts[0]);

@@ -30,6 +30,9 @@ inline void spin_pause() {
 // runs inline (the team is busy with the loop that called it).
 thread_local bool t_in_loop = false;
 
+// The innermost TeamSizeScope's count on this thread; 0: none
+thread_local int t_team_size = 0;
+
 // Items a loop hands out at once: the claim word holds the count in its low 32 bits.
 constexpr int64_t kMaxItemsPerRound = int64_t{1} << 31;
 
@@ -133,7 +136,7 @@ void Team::work(Worker& me) {
 }
 
 void Team::run(int64_t count, void (*call)(void*, int64_t), void* context) {
-  const int team = static_cast<int>(std::min<int64_t>(omp_get_max_threads(), count));
+  const int team = static_cast<int>(std::min<int64_t>(team_size(), count));
   std::unique_lock<std::mutex> lock;
   if (team > 1 && !t_in_loop) lock = std::unique_lock<std::mutex>(loop_lock_, std::try_to_lock);
   if (!lock.owns_lock()) {
@@ -218,5 +221,13 @@ void run_on_team(int64_t count, void (*call)(void*, int64_t), void* context) {
 }  // namespace detail
 
 double team_worker_cpu_seconds() { return Team::instance().worker_cpu_seconds(); }
+
+int team_size() { return t_team_size > 0 ? t_team_size : omp_get_max_threads(); }
+
+TeamSizeScope::TeamSizeScope(int threads) : previous_(t_team_size) {
+  if (threads > 0) t_team_size = threads;
+}
+
+TeamSizeScope::~TeamSizeScope() { t_team_size = previous_; }
 
 }  // namespace periflex

@@ -39,6 +39,24 @@ void parallel_for(int64_t count, Fn&& fn) {
       const_cast<void*>(static_cast<const void*>(&fn)));
 }
 
+// Threads the calling thread's loops run on: the innermost TeamSizeScope's count on this thread,
+// else OpenMP's setting for it (omp_get_max_threads).
+int team_size();
+
+// Sets the calling thread's team size for the scope's life and gives the previous one back at its
+// end (threads <= 0: leaves it as it is). A Simulation holds one over each of its calls, so that
+// its solver.threads applies to its own work and never to the thread that called it.
+class TeamSizeScope {
+ public:
+  explicit TeamSizeScope(int threads);
+  ~TeamSizeScope();
+  TeamSizeScope(const TeamSizeScope&) = delete;
+  TeamSizeScope& operator=(const TeamSizeScope&) = delete;
+
+ private:
+  int previous_;
+};
+
 // Processor time the team's workers have used since they started, in seconds (the calling
 // thread's own time not included: thread_cpu_seconds() gives that).
 double team_worker_cpu_seconds();

@@ -11,6 +11,7 @@
 namespace periflex {
 
 double Simulation::set_mouse_spring(const std::optional<MouseSpring>& spring) {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   const SystemModel& m = *s.model;
   if (!spring) {

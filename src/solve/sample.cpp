@@ -23,6 +23,7 @@ std::vector<std::string> Simulation::probe_columns() const {
 }
 
 Sample Simulation::sample() const {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   Sample out;
   out.time = s.time;

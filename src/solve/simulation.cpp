@@ -6,7 +6,6 @@
 // simulation_impl.h.
 #include "solve/simulation.h"
 
-#include <omp.h>
 
 #include <memory>
 #include <utility>
@@ -21,10 +20,11 @@ using simulation_parts::number;
 }  // namespace
 
 Simulation::Simulation(const SceneDef& scene) : impl_(std::make_unique<Impl>()) {
+  // solver.threads sets the team of this simulation's own calls (0: the calling thread's
+  // OpenMP setting); the calling thread's setting itself is left alone
+  const TeamSizeScope team(scene.solver.threads);
   Impl& s = *impl_;
   s.scene = scene;
-  // solver.threads caps the force evaluation's OpenMP team (0 keeps the runtime's default)
-  if (scene.solver.threads > 0) omp_set_num_threads(scene.solver.threads);
   if (!(scene.solver.dt > 0.0)) throw InputError({scene.path, 0, 0, "solver.dt"}, "solver.dt must be > 0");
   if (!(scene.solver.dt_safety > 0.0)) {
     throw InputError({scene.path, 0, 0, "solver.dt_safety"}, "solver.dt_safety must be > 0");
@@ -65,9 +65,13 @@ long Simulation::step_count() const { return impl_->steps; }
 double Simulation::end_time() const { return impl_->scene.solver.end_time; }
 Simulation::Timing Simulation::timing() const { return impl_->timing; }
 
-void Simulation::initialize() { impl_->initialize(); }
+void Simulation::initialize() {
+  const TeamSizeScope team(impl_->scene.solver.threads);
+  impl_->initialize();
+}
 
 void Simulation::step() {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   if (!s.initialized) s.initialize();
   s.advance(s.clock.next_time());
@@ -75,6 +79,7 @@ void Simulation::step() {
 }
 
 bool Simulation::step_toward(double t) {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   if (!s.initialized) s.initialize();
   const double dt = s.clock.dt();
@@ -101,6 +106,7 @@ bool Simulation::reached(double t) const { return time_reached(impl_->time, t, i
 LiveSettings Simulation::settings() const { return impl_->live; }
 
 void Simulation::apply(const LiveSettings& settings) {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   // a new integrator, time step or correction takes effect from the next step
   std::unique_ptr<Integrator> next;

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/sim_time.h"
+#include "core/thread_pool.h"
 #include "model/system_model.h"
 #include "solve/dynamics.h"
 #include "solve/integrator.h"

@@ -20,6 +20,7 @@ constexpr long kDrawnBondLimit = 5000;
 }  // namespace
 
 void Simulation::fill_snapshot(Snapshot& out) const {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   const SystemModel& m = *s.model;
   const Eigen::VectorXd& q = s.state.q;
@@ -188,6 +189,7 @@ void Simulation::fill_snapshot(Snapshot& out) const {
 }
 
 void Simulation::fill_reactions(Snapshot& out) const {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   out.reactions.clear();
   if (!out.with_reactions || !s.dynamics->has_constraints()) return;

@@ -25,6 +25,7 @@ void xor_bits(Eigen::VectorXd& a, const Eigen::VectorXd& b) {
 }  // namespace
 
 void Simulation::save_state(SimState& out) const {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   const Impl& s = *impl_;
   out.time = s.time;
   out.steps = s.steps;
@@ -55,6 +56,7 @@ void Simulation::save_state(SimState& out) const {
 // closes no step (no half-kick booked for a bond it breaks). What the evaluation changed stays:
 // the callers put a state in place after it.
 void Simulation::accelerations_at(const SimState& in, Eigen::VectorXd& out) {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   restore_whole(in);
   for (auto& flex : s.model->flex_bodies) flex->set_step_end(std::numeric_limits<double>::quiet_NaN(), 0.0);
@@ -63,6 +65,7 @@ void Simulation::accelerations_at(const SimState& in, Eigen::VectorXd& out) {
 }
 
 void Simulation::save_state_for_file(SimState& out) {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   save_state(out);
   IntegratorCache& cache = out.integrator;
   // only a cache that holds an acceleration to predict (velocity Verlet after a step)
@@ -78,6 +81,7 @@ void Simulation::save_state_for_file(SimState& out) {
 }
 
 void Simulation::restore_state(const SimState& in) {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   if (!in.integrator.predicted) {
     restore_whole(in);
     return;
@@ -91,6 +95,7 @@ void Simulation::restore_state(const SimState& in) {
 }
 
 void Simulation::restore_whole(const SimState& in) {
+  const TeamSizeScope team(impl_->scene.solver.threads);
   Impl& s = *impl_;
   const SystemModel& m = *s.model;
   // a state of another model is refused before anything changes

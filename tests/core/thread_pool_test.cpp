@@ -135,5 +135,42 @@ TEST(ThreadPool, TheTeamGrowsAndShrinksWithTheSetting) {
   }
 }
 
+// A scope sets the calling thread's team for its life, nests, and gives the setting back; OpenMP's
+// own setting is never touched, and another thread's team is not this one's.
+TEST(ThreadPool, ATeamSizeScopeHoldsForItsLifeOnItsThreadAlone) {
+  TeamSize omp(4);
+  EXPECT_EQ(team_size(), 4);
+  {
+    const TeamSizeScope three(3);
+    EXPECT_EQ(team_size(), 3);
+    {
+      const TeamSizeScope unchanged(0);
+      EXPECT_EQ(team_size(), 3);
+      const TeamSizeScope two(2);
+      EXPECT_EQ(team_size(), 2);
+    }
+    EXPECT_EQ(team_size(), 3);
+    int other = 0;
+    std::thread([&] { other = team_size(); }).join();
+    EXPECT_NE(other, 3);
+    // the loop runs on the scope's team: three threads, each item holding its own until all started
+    std::mutex lock;
+    std::set<std::thread::id> seen;
+    std::atomic<int> started{0};
+    parallel_for(3, [&](int64_t) {
+      {
+        std::lock_guard<std::mutex> guard(lock);
+        seen.insert(std::this_thread::get_id());
+      }
+      started.fetch_add(1);
+      const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(2);
+      while (started.load() < 3 && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+    });
+    EXPECT_EQ(seen.size(), 3u);
+    EXPECT_EQ(omp_get_max_threads(), 4);
+  }
+  EXPECT_EQ(team_size(), 4);
+}
+
 }  // namespace
 }  // namespace periflex

@@ -26,6 +26,7 @@ bool PdBody::fracture_enabled() const { return impl_->fracture; }
 void PdBody::set_bond_damping(double value) { impl_->bond_damping = value; }
 void PdBody::set_global_damping(double value) { impl_->global_damping = value; }
 void PdBody::set_break_timing(BreakTiming timing) { impl_->break_timing = timing; }
+PdBody::BreakTiming PdBody::break_timing() const { return impl_->break_timing; }
 void PdBody::set_step_end(double t_end, double half_kick) {
   impl_->step_end = t_end;
   impl_->half_kick = half_kick;
@@ -81,7 +82,7 @@ void PdBody::add_forces(const Eigen::VectorXd& q, const Eigen::VectorXd& qd, dou
     m.pending_broken += broken;
     m.pending_energy += energy;
     m.broken_pairs += broken;
-  } else if (m.tracks_stretch()) {
+  } else if (m.tracks_stretch() && m.break_timing != BreakTiming::kQuery) {
     // bonds break after the step (update_fracture), from these row maxima
     m.stretch_cache_pos.resize(2 * m.n());
     m.stretch_cache_most.resize(m.n());

@@ -99,8 +99,11 @@ class PdBody : public ForceElement {
     kInEvaluation,  // in the force evaluation that first sees it, which it takes no part in (the
                     // default; integrators whose every evaluation is at accepted positions)
     kAfterStep,     // evaluations (trial stages) hold every intact bond; update_fracture breaks it
+    kQuery,         // an evaluation at a state already stepped to, for a query (the joints'
+                    // reactions): holds every intact bond and changes nothing in the body
   };
   void set_break_timing(BreakTiming timing);
+  BreakTiming break_timing() const;
   // Evaluations at time t_end close a step and are followed by a velocity half-kick of length
   // half_kick (velocity Verlet). A bond they break takes no part in that half-kick, so the energy
   // booked for it is its strain energy there less the work it would have done over the half-kick.

@@ -43,7 +43,7 @@ void add_device_bond_forces(PdBody::Impl& m, const LawEvaluation& law_eval, doub
     m.pending_broken += broken;
     m.pending_energy += energy;
     m.broken_pairs += broken;
-  } else if (m.tracks_stretch()) {
+  } else if (m.tracks_stretch() && m.break_timing != PdBody::BreakTiming::kQuery) {
     // bonds break after the step (update_fracture), from these row maxima at these positions
     m.stretch_cache_pos.assign(e.pos, e.pos + 2 * m.n());
     m.stretch_cache_most.resize(m.n());

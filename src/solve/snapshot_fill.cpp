@@ -17,6 +17,28 @@ namespace periflex {
 namespace {
 // Bodies with fewer bonds than this send their bond pairs in snapshots.
 constexpr long kDrawnBondLimit = 5000;
+
+// Every flexible body's evaluations hold all intact bonds and leave no trace while it lives
+// (PdBody::BreakTiming::kQuery); each body's own timing comes back at its end.
+class QueryTimings {
+ public:
+  explicit QueryTimings(const SystemModel& model) : model_(model) {
+    for (const auto& flex : model_.flex_bodies) {
+      saved_.push_back(flex->break_timing());
+      flex->set_break_timing(PdBody::BreakTiming::kQuery);
+    }
+  }
+  ~QueryTimings() {
+    for (size_t f = 0; f < saved_.size(); ++f) model_.flex_bodies[f]->set_break_timing(saved_[f]);
+  }
+  QueryTimings(const QueryTimings&) = delete;
+  QueryTimings& operator=(const QueryTimings&) = delete;
+
+ private:
+  const SystemModel& model_;
+  std::vector<PdBody::BreakTiming> saved_;
+};
+
 }  // namespace
 
 void Simulation::fill_snapshot(Snapshot& out) const {
@@ -193,7 +215,11 @@ void Simulation::fill_reactions(Snapshot& out) const {
   Impl& s = *impl_;
   out.reactions.clear();
   if (!out.with_reactions || !s.dynamics->has_constraints()) return;
-  // the multipliers at this very state (not at a trial stage of the last step)
+  // the multipliers at this very state (not at a trial stage of the last step), from an
+  // evaluation that leaves the run as it was: the flexible bodies hold every intact bond for it
+  // (a bond the next step's evaluation breaks would otherwise break here, and that row's forces
+  // be summed another way there)
+  const QueryTimings query(*s.model);
   Eigen::VectorXd qdd;
   Eigen::Vector3d power;
   try {

@@ -153,6 +153,25 @@ void row_maxima(const BondStore& bonds, const BondState& live, const double* pos
   });
 }
 
+// A quarter of k |xi| s^2 summed over rows [begin, end), row by row in order; the reference length
+// from the class table or each bond's own (chosen once for the rows, not per bond).
+template <bool kOwn>
+double strain_energy_rows(int begin, int end, const Rows& r, const double* pos) {
+  double sum = 0.0;
+  for (int i = begin; i < end; ++i) {
+    double local = 0.0;
+    for (int64_t b = r.row[i]; b < r.row[i + 1]; ++b) {
+      const int32_t j = r.nbr[b];
+      const double dx = pos[2 * j] - pos[2 * i], dy = pos[2 * j + 1] - pos[2 * i + 1];
+      const double l0 = kOwn ? r.own[b] : r.l0[r.cls[b]];
+      const double s = std::sqrt(dx * dx + dy * dy) * l0 - 1.0;
+      local += double(r.k[b]) * s * s / l0;
+    }
+    sum += 0.25 * local;
+  }
+  return sum;
+}
+
 // Rows [begin, end) of the portable elastic (vel null) or damped force loop.
 template <bool kOwn>
 void portable_rows(int begin, int end, bool track, const Rows& r, const double* pos, const double* vel,
@@ -290,15 +309,8 @@ double bond_strain_energy(const BondStore& bonds, const BondState& live, const d
 #else
     (void)which;
 #endif
-    for (int i = static_cast<int>(begin); i < static_cast<int>(end); ++i) {
-      double local = 0.0;
-      for (int64_t b = bonds.row[i]; b < bonds.row[i + 1]; ++b) {
-        const double s = stretch(bonds, pos, i, b);
-        local += double(live.stiffness[b]) * s * s / bonds.inv_length(b);
-      }
-      sum += 0.25 * local;
-    }
-    return sum;
+    if (r.own) return strain_energy_rows<true>(static_cast<int>(begin), static_cast<int>(end), r, pos);
+    return strain_energy_rows<false>(static_cast<int>(begin), static_cast<int>(end), r, pos);
   });
 }
 

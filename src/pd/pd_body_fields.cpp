@@ -14,13 +14,25 @@ void PdBody::damage(std::vector<float>& out) const {
   out.resize(m.n());
   // 1 - intact weight / initial weight, the weight of a bond being its partial-volume factor
   const int n = m.n();
-  parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
+  const uint8_t* broken = m.live.broken.data();
+  // the weight of stored direction k: its own off the grid, its length class's on it (the choice
+  // made once, not per bond: this runs for every series row and frame)
+  const auto rows = [&](int64_t begin, int64_t end, auto weight_of) {
     for (int64_t i = begin; i < end; ++i) {
       double intact = 0.0;
-      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += m.live.broken[k] ? 0.0 : m.weight_of(k);
+      for (int64_t k = b.row[i]; k < b.row[i + 1]; ++k) intact += broken[k] ? 0.0 : weight_of(k);
       const double d = m.initial_weight[i] > 0.0 ? 1.0 - intact / m.initial_weight[i] : 0.0;
       out[i] = static_cast<float>(std::clamp(d, 0.0, 1.0));
     }
+  };
+  const double* own = m.bond_weight.data();
+  const double* by_class = m.class_weight.data();
+  const uint8_t* cls = b.length_class.data();
+  parallel_chunks(n, [&](int64_t, int64_t begin, int64_t end) {
+    if (b.own_lengths())
+      rows(begin, end, [own](int64_t k) { return own[k]; });
+    else
+      rows(begin, end, [by_class, cls](int64_t k) { return by_class[cls[k]]; });
   });
 }
 

@@ -28,18 +28,23 @@ centre() {
   awk -v k="$1" '$1 == "widget" && $2 == k { printf "%d %d\n", ($3 + $5) / 2, ($4 + $6) / 2 }' "$widgets" 2>/dev/null
 }
 
-# moves the pointer onto a control and clicks it with the left button
-click() {
-  local name=$1 xy bottom height turns=0
-  # a control below the window's edge (not shown, or partly): scroll the panel column with the
-  # wheel until it is whole on screen
+# a control below the window's edge (not shown, or partly): scrolls the panel column with the
+# wheel until it is whole on screen; false when 40 turns do not bring it
+scroll_to() {
+  local name=$1 bottom height turns=0
   read -r _ height < <(state window)
   while bottom=$(awk -v k="$name" '$1 == "widget" && $2 == k { print $6 }' "$widgets") &&
         [[ -z "$bottom" ]] || ((bottom > height - 2)); do
-    ((turns++ < 40)) || fail "control $name stays below the window's edge"
+    ((turns++ < 40)) || return 1
     xdotool mousemove --window "$window" 100 $((height / 2)) click 5 || fail "xdotool wheel"
     sleep 0.2
   done
+}
+
+# moves the pointer onto a control and clicks it with the left button
+click() {
+  local name=$1 xy
+  scroll_to "$name" || fail "control $name stays below the window's edge"
   xy=$(centre "$name")
   xdotool mousemove --window "$window" ${xy% *} ${xy#* } || fail "xdotool mousemove"
   sleep 0.2
@@ -106,6 +111,17 @@ retype() {
   sleep 0.2
 }
 
+# opens the section under HEADER, whose first control is INSIDE: a click the window missed under
+# load leaves the section shut (nothing more to scroll to), so the header is clicked again
+open_section() {
+  local header=$1 inside=$2 attempt
+  for attempt in 1 2 3; do
+    click "$header"
+    scroll_to "$inside" && return 0
+  done
+  fail "section $header does not open: no $inside after three clicks on it"
+}
+
 # floating-point comparison through awk: holds "A OP B"
 holds() { awk "BEGIN { exit !($1) }"; }
 
@@ -121,7 +137,7 @@ begin_record() {
     tap p
     wait_until 10 "P to open the plot window" '[[ -n "$(centre plot_canvas)" ]]'
   fi
-  click export_header
+  open_section export_header record_path
   click record_path
   retype "$target"
   field_key Return

@@ -160,8 +160,7 @@ input_case_teach() {
   wait_until 10 "F1 to close it" '[[ -z "$(centre help_table)" && "$(state help)" == 0 ]]'
   # the description panel shows the file's opening comment
   first=$(awk '/^#/ { sub(/^# ?/, ""); print; exit }' "$work/scene.toml")
-  click description_header
-  wait_until 10 "the description panel" '[[ -n "$(centre description)" ]]'
+  open_section description_header description
   [[ "$(state description)" == "$first" ]] || fail "description '$(state description)', the file says '$first'"
   # the frame rate and the solver's pace over the picture
   wait_until 10 "the pace shown" '[[ "$(state performance)" == *fps*steps/s*"x real time"* ]]'
@@ -238,8 +237,7 @@ input_case_specimen_reload() {
   cp "$scenes/specimens/bracket.dxf" "$work/specimens/bracket.dxf" || fail "copy of the drawing"
   start "$work/bracket.toml" --set solver.end_time=1
   # About this scene: the particle count, and the drawing the bracket came from with its box
-  click description_header
-  wait_until 10 "the description panel" '[[ -n "$(centre description)" ]]'
+  open_section description_header description
   [[ "$(state geometry)" == "'bracket': dxf "*"bracket.dxf, x in [0, 0.06] m, y in [0, 0.06] m" ]] ||
     fail "About this scene says '$(state geometry)'"
   before=$(state particles)

@@ -36,7 +36,8 @@ struct BreakingEvaluation {
 // force: a bond breaks in the evaluation that first sees it past s0. Both copies see the same
 // stretch bit for bit and decide alike, on any thread count.
 void add_bond_forces_breaking(const BondStore& bonds, BondState& live, const double* pos, const double* vel,
-                              double eta_over_e, const BreakingEvaluation& breaking, double* force, double* pos_copy = nullptr);
+                              double eta_over_e, const BreakingEvaluation& breaking, double* force,
+                              double* pos_copy = nullptr);
 
 // Completes the breaks an evaluation at pos (and vel) marked: k = 0, broken = 1, flags
 // cleared. Returns the pairs broken; energy_released gets the strain energy they held at pos less,

@@ -43,10 +43,6 @@ struct PdBody::Impl {
   std::vector<double> initial_weight;    // sum of partial-volume factors of the initial bonds
   std::vector<double> class_weight;      // partial-volume factor per bond length class (on the grid)
   std::vector<double> bond_weight;       // partial-volume factor per stored direction (off the grid)
-  // the partial-volume factor of stored direction b, by which the damage weighs it
-  double weight_of(int64_t b) const {
-    return bonds.own_lengths() ? bond_weight[b] : class_weight[bonds.length_class[b]];
-  }
   double dx = 0.0, delta = 0.0, c = 0.0, s0 = 0.0;
   bool fracture = false;
   double bond_damping = 0.0, global_damping = 0.0;

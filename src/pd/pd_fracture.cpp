@@ -31,8 +31,8 @@ FractureUpdate PdBody::update_fracture(const Eigen::VectorXd& q) {
   const bool cached = m.stretch_cache_valid &&
                       std::equal(m.stretch_cache_pos.begin(), m.stretch_cache_pos.end(), m.pos(q));
   m.stretch_cache_valid = false;
-  const BreakResult broke =
-      m.law->break_bonds(m.bonds, m.live, m.pos(q), m.no_fail_flags(), cached ? m.stretch_cache_most.data() : nullptr);
+  const double* row_max = cached ? m.stretch_cache_most.data() : nullptr;
+  const BreakResult broke = m.law->break_bonds(m.bonds, m.live, m.pos(q), m.no_fail_flags(), row_max);
   if (broke.pairs > 0) m.bonds_changed_on_host();
   m.broken_pairs += broke.pairs;
   update.bonds_broken += broke.pairs;
